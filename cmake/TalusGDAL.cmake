@@ -1,0 +1,11 @@
+# GDAL with its PROJ and OGR parts (Debian: libgdal-dev, libproj-dev).
+find_package(GDAL 3.6 CONFIG QUIET)
+if(NOT GDAL_FOUND)
+  find_package(GDAL 3.6 REQUIRED)
+endif()
+find_package(PROJ CONFIG QUIET)
+if(NOT PROJ_FOUND)
+  find_library(PROJ_LIBRARY proj REQUIRED)
+  add_library(PROJ::proj UNKNOWN IMPORTED)
+  set_target_properties(PROJ::proj PROPERTIES IMPORTED_LOCATION ${PROJ_LIBRARY})
+endif()

@@ -1,0 +1,2 @@
+# OpenMP for the Monte Carlo and particle loops.
+find_package(OpenMP REQUIRED COMPONENTS CXX)

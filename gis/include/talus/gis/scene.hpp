@@ -1,0 +1,44 @@
+// The scene (DESIGN.md section 1, "data flows one way"): the user's files read, checked and
+// aligned onto the DEM grid, ready to become the engine's ground model and release set.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "talus/core/release.hpp"
+#include "talus/ground/ground_model.hpp"
+#include "talus/ground/materials.hpp"
+#include "talus/gis/dem_reader.hpp"
+
+namespace talus::gis {
+
+struct SceneInputs {
+  std::filesystem::path dem;
+  std::filesystem::path lithology;   // empty: the materials' default class everywhere
+  std::filesystem::path vegetation;  // empty: the materials' default class everywhere
+  std::filesystem::path release;     // empty: no release (talus info only)
+  std::filesystem::path materials;   // empty: the built-in table
+  std::string crs;                   // the --crs text, empty for the files' own
+};
+
+struct Scene {
+  SceneInputs inputs;
+  DemInput dem;
+  MaterialsTable materials;
+  Grid<int> lithology;               // class code per cell
+  Grid<double> vegetation;           // deperdition coefficient c per cell (1/m)
+  std::optional<Grid<int>> vegetation_classes;  // class codes, when the raster holds classes
+  std::optional<ReleaseSet> release;
+  std::vector<std::string> notes;    // what was done to the inputs (alignment, reprojection)
+  std::vector<std::string> problems; // what the user should look at; not fatal
+
+  // The bilinear ground model of paper 2.2 built from the aligned maps.
+  GroundModel ground_model() const;
+};
+
+// Reads and aligns every input; throws InputError with one line naming the file and problem.
+Scene load_scene(const SceneInputs& inputs);
+
+}  // namespace talus::gis

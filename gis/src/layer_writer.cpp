@@ -1,0 +1,169 @@
+// LayerWriter: builds each layer in a GDAL MEM dataset (Float32, nodata -9999, description, unit,
+// metadata, exact statistics) and copies it with the COG driver to a hidden temporary name beside
+// its QML style; commit() renames the set. docs/layers.md describes the format.
+#include "talus/gis/layer_writer.hpp"
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "talus/core/errors.hpp"
+#include "talus/gis/gdal_dataset.hpp"
+
+namespace talus::gis {
+namespace {
+
+// The one nodata value of every layer, whatever the DEM used: cells outside its valid area.
+constexpr double kLayerNodata = -9999.0;
+
+// COG with DEFLATE and the floating-point predictor (TIFF predictor 3 for Float32) on the full
+// resolution and on the overviews; AVERAGE overviews skip nodata and keep every reached cell
+// visible (non-zero) when zoomed out; 256-pixel tiles give small layers overviews too.
+constexpr std::array kCogOptions{"COMPRESS=DEFLATE",
+                                 "PREDICTOR=YES",
+                                 "OVERVIEW_COMPRESS=DEFLATE",
+                                 "OVERVIEW_PREDICTOR=YES",
+                                 "OVERVIEWS=AUTO",
+                                 "OVERVIEW_RESAMPLING=AVERAGE",
+                                 "BLOCKSIZE=256",
+                                 static_cast<const char*>(nullptr)};
+
+GDALDriver& driver(const char* name) {
+  ensure_gdal_ready();
+  GDALDriver* found = GetGDALDriverManager()->GetDriverByName(name);
+  if (found == nullptr) throw std::runtime_error(std::string("GDAL has no ") + name + " driver");
+  return *found;
+}
+
+// Throws a one-line error naming the layer, with GDAL's last message.
+[[noreturn]] void gdal_failure(const std::filesystem::path& layer, const std::string& step) {
+  throw std::runtime_error("cannot write " + layer.string() + ": " + last_gdal_error(step + " failed"));
+}
+
+void check(CPLErr result, const std::filesystem::path& layer, const std::string& step) {
+  if (result != CE_None) gdal_failure(layer, step);
+}
+
+// The layer in memory: values, georeferencing, band properties, metadata and statistics.
+GDALDatasetUniquePtr in_memory(const Grid<float>& values, const LayerDescription& layer,
+                               const std::map<std::string, std::string>& metadata,
+                               const std::filesystem::path& final_path) {
+  const GridSpec& spec = values.spec();
+  GDALDatasetUniquePtr dataset(driver("MEM").Create("", spec.width, spec.height, 1, GDT_Float32, nullptr));
+  if (!dataset) gdal_failure(final_path, "creating the in-memory dataset");
+  std::array<double, 6> geotransform = spec.geotransform;
+  check(dataset->SetGeoTransform(geotransform.data()), final_path, "setting the geotransform");
+  if (!spec.crs_wkt.empty())
+    check(dataset->SetProjection(spec.crs_wkt.c_str()), final_path, "setting the CRS from its WKT");
+  for (const auto& [key, value] : metadata)
+    check(dataset->SetMetadataItem(key.c_str(), value.c_str()), final_path, "setting the metadata");
+
+  GDALRasterBand* band = dataset->GetRasterBand(1);
+  bool any_valid = false;
+  std::vector<float> row(static_cast<std::size_t>(spec.width));
+  for (int r = 0; r < spec.height; ++r) {
+    for (int c = 0; c < spec.width; ++c) {
+      const bool valid = values.is_valid(values.index(c, r));
+      any_valid = any_valid || valid;
+      row[static_cast<std::size_t>(c)] = valid ? values.at(c, r) : static_cast<float>(kLayerNodata);
+    }
+    check(band->RasterIO(GF_Write, 0, r, spec.width, 1, row.data(), spec.width, 1, GDT_Float32, 0, 0, nullptr),
+          final_path, "writing the values");
+  }
+  check(band->SetNoDataValue(kLayerNodata), final_path, "setting nodata");
+  band->SetDescription(layer.description.c_str());
+  check(band->SetUnitType(layer.unit.c_str()), final_path, "setting the unit");
+  // Exact statistics land in the band's STATISTICS_* metadata; GDAL has none to give without a
+  // valid cell, and QGIS computes its own then.
+  if (any_valid) {
+    double min = 0, max = 0, mean = 0, stddev = 0;
+    check(band->ComputeStatistics(FALSE, &min, &max, &mean, &stddev, nullptr, nullptr), final_path,
+          "computing statistics");
+  }
+  return dataset;
+}
+
+void write_text(const std::filesystem::path& path, std::string_view text, const std::filesystem::path& final_path) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + final_path.string());
+}
+
+void remove_quietly(const std::filesystem::path& path) {
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+}
+
+}  // namespace
+
+LayerWriter::LayerWriter(std::filesystem::path out_dir, std::map<std::string, std::string> metadata)
+    : out_dir_(std::move(out_dir)), metadata_(std::move(metadata)) {
+  metadata_["TALUS_VERSION"] = TALUS_VERSION;
+  std::error_code error;
+  std::filesystem::create_directories(out_dir_, error);
+  if (error) throw InputError("cannot create the output folder " + out_dir_.string() + ": " + error.message());
+  if (::access(out_dir_.c_str(), W_OK) != 0)
+    throw InputError("cannot write into the output folder " + out_dir_.string());
+}
+
+LayerWriter::~LayerWriter() {
+  if (committed_) return;
+  for (const auto& entry : pending_) remove_quietly(entry.first);
+}
+
+std::filesystem::path LayerWriter::temporary_path(const std::string& file_name) {
+  const auto final_path = out_dir_ / file_name;
+  if (committed_) throw std::logic_error("layer set in " + out_dir_.string() + " already committed: " + file_name);
+  if (std::ranges::any_of(pending_, [&](const auto& entry) { return entry.second == final_path; }))
+    throw std::logic_error("layer set already has " + final_path.string());
+  pending_.emplace_back(out_dir_ / ("." + file_name + ".part"), final_path);
+  return pending_.back().first;
+}
+
+void LayerWriter::add(const Grid<float>& values, const LayerDescription& layer) {
+  const auto style = embedded_style(layer.name);
+  if (!style) throw std::logic_error("no QML style in gis/styles for layer " + layer.name);
+  const auto final_path = out_dir_ / (layer.name + ".tif");
+  const auto first_new = pending_.size();
+  const auto tif = temporary_path(layer.name + ".tif");
+  const auto qml = temporary_path(layer.name + ".qml");
+  CPLErrorReset();
+  try {
+    const auto dataset = in_memory(values, layer, metadata_, final_path);
+    GDALDatasetUniquePtr written(driver("COG").CreateCopy(tif.c_str(), dataset.get(), FALSE,
+                                                          const_cast<char**>(kCogOptions.data()), nullptr, nullptr));
+    const bool copied = written != nullptr;
+    written.reset();  // closes the file; GDAL 3.6 reports a failed close through the error state only
+    if (!copied || CPLGetLastErrorType() == CE_Failure) gdal_failure(final_path, "writing the Cloud Optimized GeoTIFF");
+    write_text(qml, *style, out_dir_ / (layer.name + ".qml"));
+  } catch (...) {
+    while (pending_.size() > first_new) {
+      remove_quietly(pending_.back().first);
+      pending_.pop_back();
+    }
+    throw;
+  }
+}
+
+void LayerWriter::commit() {
+  for (const auto& [temporary, final_path] : pending_) {
+    std::error_code error;
+    std::filesystem::rename(temporary, final_path, error);
+    if (error)
+      throw std::runtime_error("cannot rename " + temporary.string() + " to " + final_path.string() + ": " +
+                               error.message());
+  }
+  committed_ = true;
+}
+
+}  // namespace talus::gis

@@ -1,0 +1,190 @@
+// Reading release rasters and release vector layers (DESIGN.md section 3, --release).
+#include "talus/gis/release_reader.hpp"
+
+#include <gdal_alg.h>
+#include <ogrsf_frmts.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "talus/core/errors.hpp"
+#include "talus/gis/dem_reader.hpp"
+#include "talus/gis/gdal_dataset.hpp"
+#include "talus/gis/raster_alignment.hpp"
+
+namespace talus::gis {
+namespace {
+
+struct ReleasePolygon {
+  std::unique_ptr<OGRGeometry> geometry;  // in the DEM's CRS
+  double depth;                           // m, > 0
+};
+
+// Keeps release cells on valid DEM cells; returns how many fell outside.
+std::size_t drop_cells_outside(Grid<float>& depth, const Grid<double>& dem) {
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < depth.size(); ++i) {
+    if (depth[i] > 0.0f && !dem.is_valid(i)) {
+      depth[i] = 0.0f;
+      ++outside;
+    }
+  }
+  return outside;
+}
+
+ReleaseSet release_from_raster(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs) {
+  const std::string name = describe_input(path, "release");
+  const AlignedRaster aligned = align_raster(path, "release", dem.spec(), ValueKind::classes, crs);
+  ReleaseSet release;
+  GridSpec spec = dem.spec();
+  spec.nodata = 0.0;
+  release.depth = Grid<float>(spec, 0.0f);
+  for (std::size_t i = 0; i < aligned.values.size(); ++i) {
+    if (aligned.values.is_valid(i) && aligned.values[i] != 0.0) release.depth[i] = static_cast<float>(std::abs(aligned.values[i]));
+  }
+  if (release.cell_count() == 0) throw InputError(name + ": has no release cell (every value is 0 or nodata): empty release");
+  drop_cells_outside(release.depth, dem);
+  if (release.cell_count() == 0) throw InputError(name + ": every release cell lies outside the DEM's valid area");
+  return release;
+}
+
+std::unique_ptr<OGRCoordinateTransformation> transform_to_dem(OGRLayer& layer, const GridSpec& dem, const CrsOption& crs) {
+  const OGRSpatialReference* layer_srs = layer.GetSpatialRef();
+  if (crs.kind == CrsOption::Kind::local || dem.crs_wkt.empty() || layer_srs == nullptr || layer_srs->IsEmpty()) return nullptr;
+  OGRSpatialReference source = *layer_srs;
+  source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  OGRSpatialReference target;
+  target.importFromWkt(dem.crs_wkt.c_str());
+  target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (source.IsSame(&target)) return nullptr;
+  return std::unique_ptr<OGRCoordinateTransformation>(OGRCreateCoordinateTransformation(&source, &target));
+}
+
+// Splits a geometry into release points and polygons; lines are refused.
+void collect(const OGRGeometry& geometry, double depth, std::vector<ReleasePoint>& points,
+             std::vector<ReleasePolygon>& polygons, const std::string& name) {
+  switch (wkbFlatten(geometry.getGeometryType())) {
+    case wkbPoint: {
+      const auto& p = *geometry.toPoint();
+      points.push_back({p.getX(), p.getY(), depth});
+      break;
+    }
+    case wkbPolygon:
+    case wkbCurvePolygon:
+      polygons.push_back({std::unique_ptr<OGRGeometry>(geometry.clone()), depth > 0 ? depth : 1.0});
+      break;
+    case wkbMultiPoint:
+    case wkbMultiPolygon:
+    case wkbGeometryCollection:
+    case wkbMultiSurface:
+      for (const OGRGeometry* part : *geometry.toGeometryCollection()) collect(*part, depth, points, polygons, name);
+      break;
+    default:
+      throw InputError(name + ": has " + std::string(OGRGeometryTypeToName(geometry.getGeometryType())) +
+                       " geometries; use points or polygons");
+  }
+}
+
+// Burns polygons onto the DEM grid with their depth; a polygon smaller than a cell still
+// marks the cell under its centroid.
+void rasterize(const std::vector<ReleasePolygon>& polygons, Grid<float>& depth, const std::string& name) {
+  const GridSpec& spec = depth.spec();
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  GDALDatasetUniquePtr raster(mem->Create("", spec.width, spec.height, 1, GDT_Float32, nullptr));
+  double gt[6];
+  std::copy(spec.geotransform.begin(), spec.geotransform.end(), gt);
+  raster->SetGeoTransform(gt);
+  std::vector<OGRGeometryH> geometries;
+  std::vector<double> burn;
+  for (const auto& polygon : polygons) {
+    geometries.push_back(OGRGeometry::ToHandle(polygon.geometry.get()));
+    burn.push_back(polygon.depth);
+  }
+  int band = 1;
+  CPLErrorReset();
+  if (GDALRasterizeGeometries(GDALDataset::ToHandle(raster.get()), 1, &band, static_cast<int>(geometries.size()),
+                              geometries.data(), nullptr, nullptr, burn.data(), nullptr, nullptr, nullptr) != CE_None) {
+    throw InputError(name + ": rasterizing its polygons failed: " + last_gdal_error("GDAL error"));
+  }
+  if (raster->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, spec.width, spec.height, depth.values().data(), spec.width,
+                                         spec.height, GDT_Float32, 0, 0) != CE_None) {
+    throw InputError(name + ": reading its rasterized polygons failed");
+  }
+  for (const auto& polygon : polygons) {
+    OGRPoint centroid;
+    if (polygon.geometry->Centroid(&centroid) != OGRERR_NONE) continue;
+    const int col = static_cast<int>(std::floor((centroid.getX() - gt[0]) / gt[1]));
+    const int row = static_cast<int>(std::floor((centroid.getY() - gt[3]) / gt[5]));
+    if (spec.contains_cell(col, row) && depth.at(col, row) <= 0.0f) depth.at(col, row) = static_cast<float>(polygon.depth);
+  }
+}
+
+ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path& path, const Grid<double>& dem,
+                               const CrsOption& crs) {
+  const std::string name = describe_input(path, "release");
+  std::vector<ReleasePoint> points;
+  std::vector<ReleasePolygon> polygons;
+  std::size_t features = 0;
+  for (OGRLayer* layer : dataset.GetLayers()) {
+    const auto transform = transform_to_dem(*layer, dem.spec(), crs);
+    const int depth_field = layer->GetLayerDefn()->GetFieldIndex("depth");
+    for (auto& feature : *layer) {
+      const OGRGeometry* original = feature->GetGeometryRef();
+      if (original == nullptr || original->IsEmpty()) continue;
+      ++features;
+      std::unique_ptr<OGRGeometry> geometry(original->clone());
+      if (transform && geometry->transform(transform.get()) != OGRERR_NONE) {
+        throw InputError(name + ": a geometry cannot be transformed to the DEM's CRS");
+      }
+      const double depth = depth_field >= 0 ? std::abs(feature->GetFieldAsDouble(depth_field)) : 0.0;
+      collect(*geometry, depth, points, polygons, name);
+    }
+  }
+  if (features == 0) throw InputError(name + ": has no features: empty release");
+
+  ReleaseSet release;
+  GridSpec spec = dem.spec();
+  spec.nodata = 0.0;
+  release.depth = Grid<float>(spec, 0.0f);
+  if (!polygons.empty()) {
+    rasterize(polygons, release.depth, name);
+    drop_cells_outside(release.depth, dem);
+    if (release.cell_count() == 0) throw InputError(name + ": its polygons lie outside the DEM's valid area");
+  }
+  std::size_t index = 0;
+  for (const auto& p : points) {
+    ++index;
+    const int col = static_cast<int>(std::lround(spec.col_of(p.x)));
+    const int row = static_cast<int>(std::lround(spec.row_of(p.y)));
+    if (!dem.is_valid(col, row)) {
+      std::ostringstream message;
+      message.precision(10);
+      message << name << ": point " << index << " of " << points.size() << " (x " << p.x << ", y " << p.y
+              << ") lies outside the DEM's valid area";
+      throw InputError(message.str());
+    }
+  }
+  release.points = std::move(points);
+  return release;
+}
+
+}  // namespace
+
+ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs) {
+  ensure_gdal_ready();
+  const std::string name = describe_input(path, "release");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(name + ": file not found");
+  CPLErrorReset();
+  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  if (!dataset) throw InputError(name + ": not a raster or vector layer GDAL can read");
+  if (dataset->GetLayerCount() > 0) return release_from_vector(*dataset, path, dem, crs);
+  if (dataset->GetRasterCount() > 0) {
+    dataset.reset();
+    return release_from_raster(path, dem, crs);
+  }
+  throw InputError(name + ": has neither a raster band nor a vector layer");
+}
+
+}  // namespace talus::gis

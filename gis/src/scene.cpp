@@ -1,0 +1,170 @@
+// Building the scene from the user's files (DESIGN.md sections 1 and 3).
+#include "talus/gis/scene.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "talus/core/errors.hpp"
+#include "talus/gis/gdal_dataset.hpp"
+#include "talus/gis/materials_file.hpp"
+#include "talus/gis/raster_alignment.hpp"
+#include "talus/gis/release_reader.hpp"
+
+namespace talus::gis {
+namespace {
+
+std::string join_codes(const std::set<long>& codes, std::size_t limit) {
+  std::ostringstream text;
+  std::size_t shown = 0;
+  for (long code : codes) {
+    if (shown == limit) {
+      text << ", ... (" << codes.size() << " in all)";
+      break;
+    }
+    text << (shown++ ? ", " : "") << code;
+  }
+  return text.str();
+}
+
+template <class Class>
+std::set<long> table_codes(const std::vector<Class>& classes) {
+  std::set<long> codes;
+  for (const auto& c : classes) codes.insert(c.code);
+  return codes;
+}
+
+std::string materials_name(const SceneInputs& inputs) {
+  return inputs.materials.empty() ? std::string("the built-in materials table") : inputs.materials.string();
+}
+
+// Class codes of an aligned raster; cells without a value (on valid terrain) take the
+// default class. Codes absent from the table are an error naming them.
+Grid<int> class_map(const AlignedRaster& raster, const Grid<double>& dem, const std::set<long>& known, int default_code,
+                    const std::string& name, const std::string& table, std::vector<std::string>& problems) {
+  GridSpec spec = dem.spec();
+  spec.nodata = -1;
+  Grid<int> classes(spec, default_code);
+  std::set<long> unknown;
+  std::size_t missing = 0;
+  for (std::size_t i = 0; i < classes.size(); ++i) {
+    if (!dem.is_valid(i)) continue;
+    if (!raster.values.is_valid(i)) {
+      ++missing;
+      continue;
+    }
+    const double value = raster.values[i];
+    const long code = std::lround(value);
+    if (std::abs(value - static_cast<double>(code)) > 1e-6 || !known.contains(code)) {
+      unknown.insert(code);
+      continue;
+    }
+    classes[i] = static_cast<int>(code);
+  }
+  if (!unknown.empty()) {
+    throw InputError(name + ": class codes " + join_codes(unknown, 10) + " are not in " + table + " (known: " +
+                     join_codes(known, 20) + ")");
+  }
+  if (missing > 0) {
+    problems.push_back(name + ": " + std::to_string(missing) + " cells of valid terrain have no value; they take the default class " +
+                       std::to_string(default_code));
+  }
+  return classes;
+}
+
+// A vegetation raster holds classes when it stores integers, or when every value is a
+// whole number found in the table; otherwise its values are deperdition coefficients (1/m).
+bool holds_classes(const AlignedRaster& raster, const std::set<long>& known) {
+  if (raster.integer_type) return true;
+  for (std::size_t i = 0; i < raster.values.size(); ++i) {
+    if (!raster.values.is_valid(i)) continue;
+    const double v = raster.values[i];
+    if (v != std::round(v) || !known.contains(std::lround(v))) return false;
+  }
+  return true;
+}
+
+void load_vegetation(Scene& scene, const CrsOption& crs) {
+  const auto& inputs = scene.inputs;
+  const Grid<double>& dem = scene.dem.elevation;
+  GridSpec spec = dem.spec();
+  const VegetationClass* fallback = scene.materials.find_vegetation(scene.materials.default_vegetation);
+  scene.vegetation = Grid<double>(spec, fallback->deperdition);
+  if (inputs.vegetation.empty()) {
+    scene.notes.push_back("vegetation: none given; default class " + std::to_string(fallback->code) + " (" +
+                          fallback->name + ") everywhere");
+    return;
+  }
+  const std::string name = describe_input(inputs.vegetation, "vegetation");
+  const auto known = table_codes(scene.materials.vegetation);
+  // Read once as classes (nearest/mode); continuous coefficients are re-read bilinearly.
+  AlignedRaster raster = align_raster(inputs.vegetation, "vegetation", spec, ValueKind::classes, crs);
+  if (holds_classes(raster, known)) {
+    scene.vegetation_classes = class_map(raster, dem, known, scene.materials.default_vegetation, name,
+                                         materials_name(inputs), scene.problems);
+    for (std::size_t i = 0; i < scene.vegetation.size(); ++i) {
+      scene.vegetation[i] = scene.materials.find_vegetation((*scene.vegetation_classes)[i])->deperdition;
+    }
+    scene.notes.push_back("vegetation: class codes, aligned by " + raster.method);
+    return;
+  }
+  raster = align_raster(inputs.vegetation, "vegetation", spec, ValueKind::continuous, crs);
+  std::size_t missing = 0;
+  for (std::size_t i = 0; i < scene.vegetation.size(); ++i) {
+    if (!dem.is_valid(i)) continue;
+    if (!raster.values.is_valid(i)) {
+      ++missing;
+      continue;
+    }
+    if (raster.values[i] < 0.0) throw InputError(name + ": negative deperdition coefficient " + std::to_string(raster.values[i]));
+    scene.vegetation[i] = raster.values[i];
+  }
+  scene.notes.push_back("vegetation: continuous deperdition coefficients (1/m), aligned by " + raster.method);
+  if (missing > 0) {
+    scene.problems.push_back(name + ": " + std::to_string(missing) + " cells of valid terrain have no value; they take " +
+                             std::to_string(fallback->deperdition) + " 1/m");
+  }
+}
+
+}  // namespace
+
+GroundModel Scene::ground_model() const {
+  Grid<GroundMaterial> nodes(dem.elevation.spec());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    nodes[i] = GroundMaterial::from(*materials.find_lithology(lithology[i]), vegetation[i]);
+  }
+  return GroundModel(dem.elevation, std::move(nodes));
+}
+
+Scene load_scene(const SceneInputs& inputs) {
+  const CrsOption crs = parse_crs_option(inputs.crs);
+  Scene scene;
+  scene.inputs = inputs;
+  scene.dem = read_dem(inputs.dem, crs);
+  scene.notes.insert(scene.notes.end(), scene.dem.notes.begin(), scene.dem.notes.end());
+  scene.materials = inputs.materials.empty() ? builtin_materials() : read_materials(inputs.materials);
+  const Grid<double>& dem = scene.dem.elevation;
+
+  std::size_t holes = 0;
+  for (std::size_t i = 0; i < dem.size(); ++i) holes += dem.is_valid(i) ? 0 : 1;
+  if (holes > 0) {
+    scene.notes.push_back(std::to_string(holes) + " DEM cells are nodata: rocks and flows stop there, layers are nodata there");
+  }
+
+  if (inputs.lithology.empty()) {
+    const LithologyClass* fallback = scene.materials.find_lithology(scene.materials.default_lithology);
+    scene.lithology = Grid<int>(dem.spec(), fallback->code);
+    scene.notes.push_back("lithology: none given; default class " + std::to_string(fallback->code) + " (" +
+                          fallback->name + ") everywhere");
+  } else {
+    const AlignedRaster raster = align_raster(inputs.lithology, "lithology", dem.spec(), ValueKind::classes, crs);
+    scene.lithology = class_map(raster, dem, table_codes(scene.materials.lithology), scene.materials.default_lithology,
+                                describe_input(inputs.lithology, "lithology"), materials_name(inputs), scene.problems);
+    scene.notes.push_back("lithology: aligned by " + raster.method);
+  }
+  load_vegetation(scene, crs);
+  if (!inputs.release.empty()) scene.release = read_release(inputs.release, dem, crs);
+  return scene;
+}
+
+}  // namespace talus::gis

@@ -1,0 +1,85 @@
+<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>
+<qgis version="3.22.16-Białowieża" styleCategories="AllStyleCategories" hasScaleBasedVisibilityFlag="0" maxScale="0" minScale="1e+08">
+  <flags>
+    <Identifiable>1</Identifiable>
+    <Removable>1</Removable>
+    <Searchable>1</Searchable>
+    <Private>0</Private>
+  </flags>
+  <temporal mode="0" fetchMode="0" enabled="0">
+    <fixedRange>
+      <start></start>
+      <end></end>
+    </fixedRange>
+  </temporal>
+  <customproperties>
+    <Option type="Map">
+      <Option type="QString" value="Value" name="identify/format"/>
+    </Option>
+  </customproperties>
+  <pipe-data-defined-properties>
+    <Option type="Map">
+      <Option type="QString" value="" name="name"/>
+      <Option name="properties"/>
+      <Option type="QString" value="collection" name="type"/>
+    </Option>
+  </pipe-data-defined-properties>
+  <pipe>
+    <provider>
+      <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
+    </provider>
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="1000" opacity="1" alphaBand="-1">
+      <minMaxOrigin>
+        <limits>None</limits>
+        <extent>WholeRaster</extent>
+        <statAccuracy>Estimated</statAccuracy>
+        <cumulativeCutLower>0.02</cumulativeCutLower>
+        <cumulativeCutUpper>0.98</cumulativeCutUpper>
+        <stdDevFactor>2</stdDevFactor>
+      </minMaxOrigin>
+      <rastershader>
+        <colorrampshader labelPrecision="2" minimumValue="0" clip="0" maximumValue="1000" classificationMode="1" colorRampType="DISCRETE">
+          <colorramp type="gradient" name="[source]">
+            <Option type="Map">
+              <Option type="QString" value="254,237,222,255" name="color1"/>
+              <Option type="QString" value="166,54,3,255" name="color2"/>
+              <Option type="QString" value="1" name="discrete"/>
+              <Option type="QString" value="gradient" name="rampType"/>
+              <Option type="QString" value="0.166667;253,208,162,255:0.333333;253,174,107,255:0.5;253,141,60,255:0.666667;230,85,13,255:0.833333;166,54,3,255" name="stops"/>
+            </Option>
+            <prop v="254,237,222,255" k="color1"/>
+            <prop v="166,54,3,255" k="color2"/>
+            <prop v="1" k="discrete"/>
+            <prop v="gradient" k="rampType"/>
+            <prop v="0.166667;253,208,162,255:0.333333;253,174,107,255:0.5;253,141,60,255:0.666667;230,85,13,255:0.833333;166,54,3,255" k="stops"/>
+          </colorramp>
+          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
+          <item label="0 - 0.1 kJ" alpha="255" value="0.1" color="#feedde"/>
+          <item label="0.1 - 1 kJ" alpha="255" value="1" color="#fdd0a2"/>
+          <item label="1 - 10 kJ" alpha="255" value="10" color="#fdae6b"/>
+          <item label="10 - 100 kJ" alpha="255" value="100" color="#fd8d3c"/>
+          <item label="100 - 1000 kJ" alpha="255" value="1000" color="#e6550d"/>
+          <item label="&gt; 1000 kJ" alpha="255" value="inf" color="#a63603"/>
+          <rampLegendSettings useContinuousLegend="0" direction="0" prefix="" minimumLabel="" orientation="2" suffix="" maximumLabel="">
+            <numericFormat id="basic">
+              <Option type="Map">
+                <Option type="QChar" value="" name="decimal_separator"/>
+                <Option type="int" value="6" name="decimals"/>
+                <Option type="int" value="0" name="rounding_type"/>
+                <Option type="bool" value="false" name="show_plus"/>
+                <Option type="bool" value="true" name="show_thousand_separator"/>
+                <Option type="bool" value="false" name="show_trailing_zeros"/>
+                <Option type="QChar" value="" name="thousand_separator"/>
+              </Option>
+            </numericFormat>
+          </rampLegendSettings>
+        </colorrampshader>
+      </rastershader>
+    </rasterrenderer>
+    <brightnesscontrast gamma="1" contrast="0" brightness="0"/>
+    <huesaturation grayscaleMode="0" colorizeGreen="128" colorizeStrength="100" colorizeOn="0" colorizeRed="255" invertColors="0" colorizeBlue="128" saturation="0"/>
+    <rasterresampler maxOversampling="2"/>
+    <resamplingStage>resamplingFilter</resamplingStage>
+  </pipe>
+  <blendMode>0</blendMode>
+</qgis>

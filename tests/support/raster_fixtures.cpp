@@ -1,0 +1,60 @@
+#include "raster_fixtures.hpp"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <stdexcept>
+
+namespace talus::test {
+
+void write_raster(const std::filesystem::path& path, const RasterFixture& fixture) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+  GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), fixture.width, fixture.height, 1,
+                                              fixture.integer ? GDT_Int16 : GDT_Float32, nullptr));
+  if (!dataset) throw std::runtime_error("cannot create " + path.string());
+  double gt[6] = {fixture.x0, fixture.cell, 0, fixture.y0, 0, -fixture.cell};
+  dataset->SetGeoTransform(gt);
+  if (!fixture.crs.empty()) {
+    OGRSpatialReference srs;
+    srs.SetFromUserInput(fixture.crs.c_str());
+    dataset->SetSpatialRef(&srs);
+  }
+  GDALRasterBand* band = dataset->GetRasterBand(1);
+  band->SetNoDataValue(fixture.nodata);
+  if (!fixture.unit.empty()) band->SetUnitType(fixture.unit.c_str());
+  std::vector<double> values(static_cast<std::size_t>(fixture.width * fixture.height));
+  for (int r = 0; r < fixture.height; ++r) {
+    for (int c = 0; c < fixture.width; ++c) values[static_cast<std::size_t>(r * fixture.width + c)] = fixture.value(c, r);
+  }
+  if (band->RasterIO(GF_Write, 0, 0, fixture.width, fixture.height, values.data(), fixture.width, fixture.height,
+                     GDT_Float64, 0, 0) != CE_None) {
+    throw std::runtime_error("cannot write " + path.string());
+  }
+}
+
+void write_vector(const std::filesystem::path& path, const std::string& crs, const std::vector<VectorFeature>& features,
+                  bool with_depth_field) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+  GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  if (!dataset) throw std::runtime_error("cannot create " + path.string());
+  OGRSpatialReference srs;
+  srs.SetFromUserInput(crs.c_str());
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  OGRLayer* layer = dataset->CreateLayer("release", &srs, wkbUnknown, nullptr);
+  if (with_depth_field) {
+    OGRFieldDefn depth("depth", OFTReal);
+    layer->CreateField(&depth);
+  }
+  for (const auto& f : features) {
+    OGRFeature feature(layer->GetLayerDefn());
+    OGRGeometry* geometry = nullptr;
+    OGRGeometryFactory::createFromWkt(f.wkt.c_str(), &srs, &geometry);
+    feature.SetGeometryDirectly(geometry);
+    if (with_depth_field) feature.SetField("depth", f.depth);
+    if (layer->CreateFeature(&feature) != OGRERR_NONE) throw std::runtime_error("cannot write a feature");
+  }
+}
+
+}  // namespace talus::test

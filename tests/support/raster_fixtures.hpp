@@ -1,0 +1,33 @@
+// Small rasters and vector layers written to disk for the GIS and CLI tests.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace talus::test {
+
+struct RasterFixture {
+  int width = 40, height = 30;
+  double x0 = 500000.0, y0 = 5200000.0, cell = 10.0;  // upper-left corner and cell size (m)
+  std::string crs = "EPSG:32632";                      // any OGR user input; empty for none
+  std::string unit;                                    // band unit type
+  double nodata = -9999.0;
+  bool integer = false;                                // Int16 instead of Float32
+  std::function<double(int col, int row)> value = [](int, int row) { return 1000.0 - row; };
+};
+
+// Writes a GeoTIFF from the fixture.
+void write_raster(const std::filesystem::path& path, const RasterFixture& fixture);
+
+struct VectorFeature {
+  std::string wkt;       // geometry in the layer's CRS
+  double depth = 0;      // written when the layer has a depth field
+};
+
+// Writes a GeoPackage with one layer of the given features.
+void write_vector(const std::filesystem::path& path, const std::string& crs, const std::vector<VectorFeature>& features,
+                  bool with_depth_field);
+
+}  // namespace talus::test

@@ -1,0 +1,45 @@
+#include "run_talus.hpp"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "test_paths.hpp"
+
+namespace talus::test {
+namespace {
+
+std::string quoted(const std::string& text) {
+  std::string q = "'";
+  for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+}  // namespace
+
+ProgramResult run_talus(const std::vector<std::string>& arguments, const std::filesystem::path& working_folder) {
+  const auto capture = std::filesystem::temp_directory_path() / "talus-tests" /
+                       ("capture-" + working_folder.filename().string());
+  std::filesystem::create_directories(capture);
+  std::string command = "cd " + quoted(working_folder.string()) + " && " + quoted(talus_exe().string());
+  for (const auto& a : arguments) command += " " + quoted(a);
+  command += " >" + quoted((capture / "out").string()) + " 2>" + quoted((capture / "err").string());
+  const int status = std::system(command.c_str());
+  ProgramResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = slurp(capture / "out");
+  result.err = slurp(capture / "err");
+  std::filesystem::remove_all(capture);
+  return result;
+}
+
+}  // namespace talus::test
