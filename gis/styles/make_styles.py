@@ -3,11 +3,14 @@
 
 usage: /usr/bin/python3 gis/styles/make_styles.py [FOLDER]   (default: this folder)
 
-Every style is a QGIS 3.22 single-band pseudocolor renderer with discrete classes: a value v
-takes the colour of the first class whose upper break is >= v. The first class, up to 0, is
-transparent because 0 means "never reached" in every layer; nodata is transparent too. The
-classes and their sources are in CLASSES below (docs/layers.md explains them); the QML text is
-the format QGIS 3.22 itself writes with saveNamedStyle, with attributes in a fixed order.
+Every raster style is a QGIS 3.22 single-band pseudocolor renderer with discrete classes: a
+value v takes the colour of the first class whose upper break is >= v. The first class, up to 0,
+is transparent because 0 means "never reached" in every layer; nodata is transparent too. The
+classes and their sources are in CLASSES below (docs/layers.md explains them).
+trajectories.qml styles the lines of trajectories.gpkg: a graduated renderer on max_energy_kj
+with the energy classes of energy_max, the strongest drawn on top, and field aliases with units.
+The QML text is the format QGIS 3.22 itself writes with saveNamedStyle, with attributes in a
+fixed order.
 """
 import math
 import os
@@ -183,11 +186,169 @@ def style(unit, counts, breaks, colours):
 """
 
 
+# trajectories.gpkg: (field, alias) in the layer's order; QGIS shows the GeoPackage's fid first.
+TRAJECTORY_FIELDS = [("fid", ""), ("run_id", "Run"), ("source_id", "Release source"),
+                     ("stop_reason", "Stop reason"), ("max_energy_kj", "Maximum kinetic energy (kJ)"),
+                     ("runout_length_m", "Runout length (m)")]
+TRAJECTORY_LINE_WIDTH_MM = "0.5"
+
+
+def option_map(props, indent):
+    """QGIS's two copies of a symbol layer's properties: an Option map and legacy props."""
+    pad = " " * indent
+    options = "".join(f'\n{pad}  <Option type="QString" value={quoteattr(v)} name="{k}"/>' for k, v in props)
+    legacy = "".join(f"\n{pad}<prop v={quoteattr(v)} k=\"{k}\"/>" for k, v in props)
+    return f'{pad}<Option type="Map">{options}\n{pad}</Option>{legacy}'
+
+
+def data_defined(indent):
+    pad = " " * indent
+    return (f"{pad}<data_defined_properties>\n{pad}  <Option type=\"Map\">\n"
+            f'{pad}    <Option type="QString" value="" name="name"/>\n{pad}    <Option name="properties"/>\n'
+            f'{pad}    <Option type="QString" value="collection" name="type"/>\n{pad}  </Option>\n'
+            f"{pad}</data_defined_properties>")
+
+
+def line_symbol(index, colour):
+    """A solid line with round caps and joins, drawn in rendering pass `index`."""
+    scale = "3x:0,0,0,0,0,0"
+    props = [("align_dash_pattern", "0"), ("capstyle", "round"), ("customdash", "5;2"),
+             ("customdash_map_unit_scale", scale), ("customdash_unit", "MM"), ("dash_pattern_offset", "0"),
+             ("dash_pattern_offset_map_unit_scale", scale), ("dash_pattern_offset_unit", "MM"),
+             ("draw_inside_polygon", "0"), ("joinstyle", "round"), ("line_color", rgba(colour)),
+             ("line_style", "solid"), ("line_width", TRAJECTORY_LINE_WIDTH_MM), ("line_width_unit", "MM"),
+             ("offset", "0"), ("offset_map_unit_scale", scale), ("offset_unit", "MM"), ("ring_filter", "0"),
+             ("trim_distance_end", "0"), ("trim_distance_end_map_unit_scale", scale),
+             ("trim_distance_end_unit", "MM"), ("trim_distance_start", "0"),
+             ("trim_distance_start_map_unit_scale", scale), ("trim_distance_start_unit", "MM"),
+             ("tweak_dash_pattern_on_corners", "0"), ("use_custom_dash", "0"), ("width_map_unit_scale", scale)]
+    return (f'      <symbol type="line" name="{index}" alpha="1" clip_to_extent="1" force_rhr="0">\n'
+            f"{data_defined(8)}\n"
+            f'        <layer class="SimpleLine" pass="{index}" enabled="1" locked="0">\n'
+            f"{option_map(props, 10)}\n{data_defined(10)}\n        </layer>\n      </symbol>")
+
+
+def bound(x):
+    """A class limit as QGIS writes it in a graduated renderer."""
+    return "inf" if math.isinf(x) else f"{x:.15f}"
+
+
+def per_field(template):
+    return "\n".join(template.format(index=i, field=f, alias=quoteattr(a)[1:-1])
+                      for i, (f, a) in enumerate(TRAJECTORY_FIELDS))
+
+
+def trajectory_style():
+    lows = [0] + ENERGY_KJ
+    highs = ENERGY_KJ + [math.inf]
+    names = labels("kJ", False, ENERGY_KJ)
+    ranges = "\n".join(f'      <range symbol="{i}" label={quoteattr(label)} lower="{bound(low)}" '
+                       f'upper="{bound(high)}" render="true"/>'
+                       for i, (low, high, label) in enumerate(zip(lows, highs, names)))
+    symbols = "\n".join(line_symbol(i, c) for i, c in enumerate(ENERGY_COLOURS))
+    field_configuration = per_field('    <field name="{field}" configurationFlags="None">\n'
+                                    '      <editWidget type="">\n        <config>\n          <Option/>\n'
+                                    "        </config>\n      </editWidget>\n    </field>")
+    constraints = "\n".join(
+        f'    <constraint field="{f}" constraints="{3 if f == "fid" else 0}" unique_strength="{int(f == "fid")}" '
+        f'notnull_strength="{int(f == "fid")}" exp_strength="0"/>' for f, _ in TRAJECTORY_FIELDS)
+    return f"""<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>
+<qgis version="{QGIS_VERSION}" styleCategories="AllStyleCategories" hasScaleBasedVisibilityFlag="0" maxScale="0" minScale="100000000" readOnly="0" labelsEnabled="0" symbologyReferenceScale="-1" simplifyAlgorithm="0" simplifyDrawingHints="1" simplifyDrawingTol="1" simplifyLocal="1" simplifyMaxScale="1">
+  <flags>
+    <Identifiable>1</Identifiable>
+    <Removable>1</Removable>
+    <Searchable>1</Searchable>
+    <Private>0</Private>
+  </flags>
+  <temporal mode="0" enabled="0" accumulate="0" durationField="" durationUnit="min" endExpression="" endField="" fixedDuration="0" limitMode="0" startExpression="" startField="">
+    <fixedRange>
+      <start></start>
+      <end></end>
+    </fixedRange>
+  </temporal>
+  <renderer-v2 type="graduatedSymbol" attr="max_energy_kj" graduatedMethod="GraduatedColor" symbollevels="1" enableorderby="0" forceraster="0" referencescale="-1">
+    <ranges>
+{ranges}
+    </ranges>
+    <symbols>
+{symbols}
+    </symbols>
+    <classificationMethod id="Custom">
+      <symmetricMode enabled="0" symmetrypoint="0" astride="0"/>
+      <labelFormat format="%1 - %2" labelprecision="4" trimtrailingzeroes="1"/>
+      <parameters>
+        <Option/>
+      </parameters>
+      <extraInformation/>
+    </classificationMethod>
+    <rotation/>
+    <sizescale/>
+  </renderer-v2>
+  <customproperties>
+    <Option/>
+  </customproperties>
+  <blendMode>0</blendMode>
+  <featureBlendMode>0</featureBlendMode>
+  <layerOpacity>1</layerOpacity>
+  <geometryOptions geometryPrecision="0" removeDuplicateNodes="0">
+    <activeChecks type="StringList">
+      <Option type="QString" value=""/>
+    </activeChecks>
+    <checkConfiguration/>
+  </geometryOptions>
+  <legend type="default-vector" showLabelLegend="0"/>
+  <referencedLayers/>
+  <fieldConfiguration>
+{field_configuration}
+  </fieldConfiguration>
+  <aliases>
+{per_field('    <alias field="{field}" index="{index}" name="{alias}"/>')}
+  </aliases>
+  <defaults>
+{per_field('    <default field="{field}" expression="" applyOnUpdate="0"/>')}
+  </defaults>
+  <constraints>
+{constraints}
+  </constraints>
+  <constraintExpressions>
+{per_field('    <constraint field="{field}" exp="" desc=""/>')}
+  </constraintExpressions>
+  <expressionfields/>
+  <attributeactions/>
+  <attributetableconfig actionWidgetStyle="dropDown" sortExpression="" sortOrder="0">
+    <columns/>
+  </attributetableconfig>
+  <conditionalstyles>
+    <rowstyles/>
+    <fieldstyles/>
+  </conditionalstyles>
+  <storedexpressions/>
+  <editform tolerant="1"></editform>
+  <editforminit/>
+  <editforminitcodesource>0</editforminitcodesource>
+  <editforminitfilepath></editforminitfilepath>
+  <editforminitcode><![CDATA[]]></editforminitcode>
+  <featformsuppress>0</featformsuppress>
+  <editorlayout>generatedlayout</editorlayout>
+  <editable/>
+  <labelOnTop/>
+  <reuseLastValue/>
+  <dataDefinedFieldProperties/>
+  <widgets/>
+  <previewExpression></previewExpression>
+  <mapTip></mapTip>
+  <layerGeometryType>1</layerGeometryType>
+</qgis>
+"""
+
+
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     for name, spec in CLASSES.items():
         with open(os.path.join(folder, name + ".qml"), "w", encoding="utf-8") as f:
             f.write(style(*spec))
+    with open(os.path.join(folder, "trajectories.qml"), "w", encoding="utf-8") as f:
+        f.write(trajectory_style())
 
 
 if __name__ == "__main__":

@@ -3,13 +3,21 @@
 #pragma once
 
 #include <functional>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 namespace talus::cli {
 
 using Action = std::function<int()>;
 
 void add_info_command(CLI::App& app, Action& action);
+void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line);
+void add_params_command(CLI::App& app, Action& action);
+
+// Every rock-fall parameter with its section, unit, meaning and default.
+nlohmann::json rockfall_parameters();
 
 }  // namespace talus::cli

@@ -2,6 +2,7 @@
 // into it, bilinear interpolation of A, B, C, D, and octaves weighted 1, 1/2, 1/4, ...
 #include "talus/ground/perlin_noise.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -10,18 +11,14 @@
 namespace talus {
 namespace {
 
-// Tab[] holds 2^12 values: a lattice point shares its value with another one only by a hash
-// collision (probability 1/4096), never periodically.
-constexpr int kTableBits = 12;
-constexpr std::size_t kTableSize = std::size_t{1} << kTableBits;
 // The counter-random stream (source, run) that fills Tab[] for a given seed.
 constexpr std::uint64_t kTableSource = 0x5045524C494E3334ULL;  // "PERLIN34"
 constexpr std::uint64_t kTableRun = 0;
 
 // Hash(i, j): an odd-multiplier combination of the two lattice coordinates (two's complement,
 // so negative coordinates are fine), then the xor-shift-multiply finaliser of MurmurHash3
-// (Appleby), whose top kTableBits bits index Tab[].
-std::size_t lattice_hash(std::int64_t i, std::int64_t j) {
+// (Appleby), whose top table_bits bits index Tab[].
+std::size_t lattice_hash(std::int64_t i, std::int64_t j, int table_bits) {
   std::uint64_t h =
       static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(j) * 0xD1B54A32D192ED03ULL;
   h ^= h >> 33;
@@ -29,7 +26,7 @@ std::size_t lattice_hash(std::int64_t i, std::int64_t j) {
   h ^= h >> 33;
   h *= 0xC4CEB9FE1A85EC53ULL;
   h ^= h >> 33;
-  return static_cast<std::size_t>(h >> (64 - kTableBits));
+  return static_cast<std::size_t>(h >> (64 - table_bits));
 }
 
 // One Perlin0 lattice square at scaled coordinates (u, v) = (lambda x, lambda y): its corner
@@ -47,7 +44,9 @@ LatticeCell lattice_cell(double u, double v) {
 
 }  // namespace
 
-PerlinNoise::PerlinNoise(const PerlinParameters& parameters) : parameters_(parameters), table_(kTableSize) {
+PerlinNoise::PerlinNoise(const PerlinParameters& parameters)
+    : parameters_(parameters), table_(std::size_t{1} << std::clamp(parameters.table_bits, 1, 20)) {
+  parameters_.table_bits = std::clamp(parameters.table_bits, 1, 20);
   CounterRandom random(parameters_.seed, kTableSource, kTableRun);
   for (double& value : table_) value = random.uniform(-1.0, 1.0);
   double weight_sum = 0.0;
@@ -55,7 +54,7 @@ PerlinNoise::PerlinNoise(const PerlinParameters& parameters) : parameters_(param
   octave_norm_ = weight_sum > 0.0 ? 1.0 / weight_sum : 0.0;
 }
 
-double PerlinNoise::table_at(std::int64_t i, std::int64_t j) const { return table_[lattice_hash(i, j)]; }
+double PerlinNoise::table_at(std::int64_t i, std::int64_t j) const { return table_[lattice_hash(i, j, parameters_.table_bits)]; }
 
 // Perlin(x, y) = sum_k 2^-k Perlin0(2^k x, 2^k y), scaled by amplitude / sum_k 2^-k (paper 3.4).
 double PerlinNoise::operator()(double x, double y) const {

@@ -23,6 +23,9 @@ struct BadInput {
   std::string problem;                 // a phrase of the message
 };
 
+// Names the case in test listings instead of dumping its bytes.
+void PrintTo(const BadInput& bad, std::ostream* os) { *os << bad.name; }
+
 class BadInputs : public ::testing::TestWithParam<BadInput> {
  protected:
   static void SetUpTestSuite() {

@@ -16,6 +16,10 @@ struct PerlinParameters {
   double amplitude = 0.1;        // m: the sum of octaves is scaled to stay within +-amplitude
   int octaves = 4;               // number of Perlin0 terms summed
   std::uint64_t seed = 0;        // fills Tab[] (counter-based, see core/counter_random)
+  // Tab[] holds 2^table_bits values (1..20): lattice points share a value only by a hash
+  // collision (probability 2^-table_bits), never periodically. Stochastic rock fall builds one
+  // table per trajectory and uses a smaller one than the default.
+  int table_bits = 12;
 };
 
 class PerlinNoise {

@@ -1,0 +1,144 @@
+// trajectories.gpkg through OGR's GeoPackage driver: the layer, its fields, the software version
+// in the layer's metadata, and every feature in one transaction. The fields' aliases are set for
+// GDAL versions whose driver stores them (in gpkg_data_columns); GDAL 3.6 drops them, and QGIS
+// takes them from trajectories.qml.
+#include "talus/gis/trajectory_writer.hpp"
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_feature.h>
+#include <ogr_geometry.h>
+#include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
+
+#include <array>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+#include <system_error>
+
+#include "talus/gis/gdal_dataset.hpp"
+
+namespace talus::gis {
+namespace {
+
+struct Field {
+  const char* name;
+  OGRFieldType type;
+  const char* alias;
+};
+
+// The attributes in the layer's order; gis/styles/make_styles.py names the same fields.
+constexpr std::array kFields{
+    Field{"run_id", OFTInteger64, "Run"},
+    Field{"source_id", OFTInteger64, "Release source"},
+    Field{"stop_reason", OFTString, "Stop reason"},
+    Field{"max_energy_kj", OFTReal, "Maximum kinetic energy (kJ)"},
+    Field{"runout_length_m", OFTReal, "Runout length (m)"},
+};
+
+// "cannot write PATH: STEP: GDAL's message".
+[[noreturn]] void gdal_failure(const std::filesystem::path& path, const std::string& step) {
+  throw std::runtime_error("cannot write " + path.string() + ": " + step + ": " + last_gdal_error("failed"));
+}
+
+void check(OGRErr result, const std::filesystem::path& path, const std::string& step) {
+  if (result != OGRERR_NONE) gdal_failure(path, step);
+}
+
+// The layer's CRS. Local coordinates get the GeoPackage's "Undefined Cartesian SRS" (srs_id -1,
+// metres): GDAL 3.6 stores a layer without CRS as srs_id 0, the undefined *geographic* one.
+OGRSpatialReference layer_crs(const std::string& crs_wkt, const std::filesystem::path& path) {
+  OGRSpatialReference srs;
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (crs_wkt.empty()) {
+    srs.SetLocalCS("Undefined Cartesian SRS");
+    srs.SetLinearUnits(SRS_UL_METER, 1.0);
+  } else {
+    check(srs.importFromWkt(crs_wkt.c_str()), path, "reading the CRS");
+  }
+  return srs;
+}
+
+OGRLayer& create_layer(GDALDataset& dataset, const std::string& crs_wkt, const std::filesystem::path& path) {
+  OGRSpatialReference srs = layer_crs(crs_wkt, path);
+  const char* const options[] = {"IDENTIFIER=Rock-fall trajectories",
+                                 "DESCRIPTION=Sampled rock-fall trajectories: centre of mass of the rock, "
+                                 "x and y in the CRS, z elevation (m); energy in kJ, length in m",
+                                 nullptr};
+  OGRLayer* layer = dataset.CreateLayer("trajectories", &srs, wkbLineString25D,
+                                        const_cast<char**>(options));
+  if (layer == nullptr) gdal_failure(path, "creating the layer");
+  for (const Field& field : kFields) {
+    OGRFieldDefn definition(field.name, field.type);
+    definition.SetAlternativeName(field.alias);
+    check(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
+  }
+  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) gdal_failure(path, "setting the metadata");
+  return *layer;
+}
+
+void add_feature(OGRLayer& layer, const TrajectoryLine& line, const std::filesystem::path& path) {
+  OGRFeature feature(layer.GetLayerDefn());
+  feature.SetField("run_id", static_cast<GIntBig>(line.run_id));
+  feature.SetField("source_id", static_cast<GIntBig>(line.source_id));
+  feature.SetField("stop_reason", to_string(line.stop_reason));
+  feature.SetField("max_energy_kj", line.max_energy);
+  feature.SetField("runout_length_m", line.runout_length);
+  if (line.points.size() >= 2) {
+    auto geometry = std::make_unique<OGRLineString>();
+    geometry->setNumPoints(static_cast<int>(line.points.size()), FALSE);
+    for (std::size_t i = 0; i < line.points.size(); ++i) {
+      const Eigen::Vector3d& p = line.points[i];
+      geometry->setPoint(static_cast<int>(i), p.x(), p.y(), p.z());
+    }
+    feature.SetGeometryDirectly(geometry.release());
+  }
+  check(layer.CreateFeature(&feature), path, "writing a trajectory");
+}
+
+void remove_quietly(const std::filesystem::path& path) {
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+}
+
+}  // namespace
+
+void write_trajectories(const std::filesystem::path& path, const std::vector<TrajectoryLine>& lines,
+                        const std::string& crs_wkt) {
+  ensure_gdal_ready();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+  if (driver == nullptr) throw std::runtime_error("cannot write " + path.string() + ": GDAL has no GPKG driver");
+  std::error_code error;
+  std::filesystem::remove(path, error);  // SQLite would open an existing file instead of replacing it
+  if (error) throw std::runtime_error("cannot replace " + path.string() + ": " + error.message());
+
+  CPLErrorReset();
+  GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  if (!dataset) gdal_failure(path, "creating the GeoPackage");
+  CPLErrorReset();  // a temporary name's extension other than .gpkg is only a warning
+  try {
+    OGRLayer& layer = create_layer(*dataset, crs_wkt, path);
+    check(dataset->StartTransaction(), path, "starting the transaction");
+    for (const TrajectoryLine& line : lines) add_feature(layer, line, path);
+    check(dataset->CommitTransaction(), path, "committing the features");
+    dataset.reset();  // closes the file; a failed close shows in the error state only
+    if (CPLGetLastErrorType() == CE_Failure) gdal_failure(path, "closing the GeoPackage");
+  } catch (...) {
+    dataset.reset();
+    remove_quietly(path);
+    throw;
+  }
+}
+
+void add_trajectories(LayerWriter& writer, const std::vector<TrajectoryLine>& lines, const std::string& crs_wkt) {
+  const auto style = embedded_style("trajectories");
+  if (!style) throw std::logic_error("no QML style in gis/styles for trajectories");
+  write_trajectories(writer.temporary_path("trajectories.gpkg"), lines, crs_wkt);
+  std::ofstream qml(writer.temporary_path("trajectories.qml"), std::ios::binary);
+  qml.write(style->data(), static_cast<std::streamsize>(style->size()));
+  qml.close();
+  if (!qml) throw std::runtime_error("cannot write " + (writer.folder() / "trajectories.qml").string());
+}
+
+}  // namespace talus::gis

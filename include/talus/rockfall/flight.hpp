@@ -1,0 +1,44 @@
+// Flight between contacts (paper 3.1 "usual dynamic laws of motion", 3.2 air friction): the
+// centre of mass under gravity and the sphere's air drag. Without drag the step is the exact
+// parabola, so its length does not matter; with drag it is one classical fourth-order
+// Runge-Kutta step, kept short by max_duration() so that its error stays below 1e-7 relative.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "talus/rockfall/air_drag.hpp"
+
+namespace talus {
+
+struct PointState {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // m
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s
+};
+
+class Flight {
+ public:
+  // gravity: g (m/s2, pointing down -z); drag: the rock's air drag; mass (kg).
+  Flight(double gravity, const AirDrag& drag, double mass);
+
+  // The state `duration` seconds after `start`.
+  PointState advance(const PointState& start, double duration) const;
+  // Upper bound of the acceleration's magnitude at this velocity (m/s2): g + k |v|^2.
+  double acceleration_bound(const Eigen::Vector3d& velocity) const;
+  // Longest RK4 step (s) at this velocity: 0.02 / (k (|v| + v_terminal)); infinite without drag.
+  double max_duration(const Eigen::Vector3d& velocity) const;
+  bool has_drag() const { return drag_per_mass_ > 0.0; }
+
+ private:
+  Eigen::Vector3d acceleration(const Eigen::Vector3d& velocity) const;
+  double gravity_;
+  AirDrag drag_;
+  double inverse_mass_;
+  double drag_per_mass_;     // k (1/m)
+  double terminal_speed_;    // sqrt(g / k) (m/s)
+};
+
+// Longest time (s) in which a point starting at `speed` (m/s) with an acceleration of magnitude at
+// most `acceleration` (m/s2) moves at most `length` (m): the root of speed t + a t^2 / 2 = length.
+double duration_for_length(double speed, double acceleration, double length);
+
+}  // namespace talus

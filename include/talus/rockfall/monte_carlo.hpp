@@ -1,0 +1,60 @@
+// The stochastic simulation of paper 3.4: every release source runs N times, each run on its
+// own Perlin-perturbed ground with its own release point inside the source cell, rock size,
+// density and material parameters. Random numbers are counter-based from (seed, source, run),
+// and statistics merge exactly, so the layers are bit-identical for any thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "talus/core/progress.hpp"
+#include "talus/core/release.hpp"
+#include "talus/ground/ground_model.hpp"
+#include "talus/rockfall/rock.hpp"
+#include "talus/rockfall/rockfall_statistics.hpp"
+#include "talus/rockfall/trajectory_line.hpp"
+#include "talus/rockfall/trajectory_model.hpp"
+
+namespace talus {
+
+// How much each run varies around the nominal rock and materials (paper 3.4).
+struct StochasticParameters {
+  double release_jitter = 1.0;          // - : release point uniform over this fraction of its cell
+  double release_height = 0.5;          // m : start height of the rock's lowest point above the ground
+  double size_variation = 0.1;          // - : axes scaled by U(1 - v, 1 + v)
+  double density_variation = 0.05;      // - : density scaled by U(1 - v, 1 + v)
+  double restitution_variation = 0.1;   // - : restitutions scaled by U(1 - v, 1 + v)
+  double friction_variation = 0.1;      // - : friction scaled by U(1 - v, 1 + v)
+  double noise_frequency = 1.0;         // - : Perlin base frequency lambda = this / rock diameter
+  int noise_octaves = 3;                // Perlin octaves
+};
+
+struct RockfallSettings {
+  Rock rock;                            // the nominal rock
+  StochasticParameters stochastic;
+  std::uint64_t runs_per_source = 10;   // trajectories per release cell or point
+  std::uint64_t seed = 1;
+  int threads = 0;                      // 0: OpenMP's default
+  std::size_t saved_trajectories = 500; // at most this many lines kept for trajectories.gpkg
+};
+
+struct RockfallResult {
+  RockfallStatistics statistics;
+  std::vector<TrajectoryLine> lines;            // sorted by (source, run)
+  std::vector<std::uint64_t> stop_counts;       // by StopReason
+  std::vector<double> runouts;                  // m, horizontal path length of every run, by (source, run)
+  std::uint64_t trajectories = 0;
+  int threads = 1;
+};
+
+// One release location: a cell centre (jittered inside its cell) or a point.
+struct ReleaseSource {
+  double x = 0, y = 0;   // m
+  bool is_cell = true;
+};
+std::vector<ReleaseSource> release_sources(const ReleaseSet& release);
+
+RockfallResult run_rockfall(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
+                            const TrajectoryModel& model, const RockfallSettings& settings, Progress* progress);
+
+}  // namespace talus

@@ -1,0 +1,70 @@
+// The statistical map of paper 3.4 for rock fall, per DEM cell over all trajectories:
+// passages, reach probability, deposits, kinetic energy (max, 95th percentile over
+// passages), jump height (95th percentile over passages), velocity (max), and energy lost by
+// friction and by ground deformation. Built from per-cell accumulators in src/hazard whose
+// merge is exact and order-independent (integer counts, maxima, fixed-point sums,
+// logarithmic histograms), so merged statistics are bit-identical for any thread count.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "talus/core/grid.hpp"
+#include "talus/rockfall/trajectory_observer.hpp"
+
+namespace talus {
+
+struct RockfallLayers {
+  Grid<float> reach_probability;        // - : passages / simulated rocks
+  Grid<float> passages;                 // count of trajectories through the cell
+  Grid<float> deposits;                 // count of rocks stopped in the cell
+  Grid<float> energy_max;               // kJ
+  Grid<float> energy_p95;               // kJ
+  Grid<float> jump_height_p95;          // m
+  Grid<float> velocity_max;             // m/s
+  Grid<float> energy_loss_friction;     // kJ lost in the cell, mean per simulated rock
+  Grid<float> energy_loss_deformation;  // kJ lost in the cell, mean per simulated rock
+};
+
+class RockfallStatistics {
+ public:
+  // valid: the DEM (cells that are nodata there are nodata in every layer).
+  explicit RockfallStatistics(const Grid<double>& dem);
+  ~RockfallStatistics();
+  RockfallStatistics(RockfallStatistics&&) noexcept;
+  RockfallStatistics& operator=(RockfallStatistics&&) noexcept;
+
+  // Adds every statistic of `other` (same grid) into this one.
+  void merge(const RockfallStatistics& other);
+  std::uint64_t rocks() const;          // trajectories recorded
+  RockfallLayers layers() const;
+
+  // Records one trajectory at a time: pass it to a TrajectoryModel, then commit().
+  class Recorder;
+  Recorder recorder();
+
+ private:
+  struct Accumulators;
+  std::unique_ptr<Accumulators> accumulators_;
+};
+
+// Gathers one trajectory (cells crossed between consecutive samples by a grid walk, the
+// largest energy, jump height and speed per crossed cell, losses per cell, the stop cell) and
+// adds it to its statistics on commit().
+class RockfallStatistics::Recorder final : public TrajectoryObserver {
+ public:
+  explicit Recorder(RockfallStatistics& statistics);
+  ~Recorder() override;
+  void on_sample(const TrajectorySample& sample) override;
+  void on_energy_loss(double x, double y, double friction, double deformation) override;
+  void on_stop(const TrajectorySample& last, StopReason reason) override;
+  void commit();   // adds the trajectory and resets the recorder for the next one
+
+ private:
+  struct Passage;
+  RockfallStatistics& statistics_;
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace talus

@@ -1,0 +1,37 @@
+// What a trajectory reports while it runs: the seam between the trajectory models (fast
+// bounce now, the piston carpet next) and everything downstream (hazard statistics, sampled
+// trajectory lines). A model calls on_sample at least every `sample_spacing` metres of travel
+// and at every contact, so consecutive samples are joined by straight segments.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace talus {
+
+enum class StopReason {
+  at_rest,        // speed fell below the stop threshold where friction holds the rock
+  max_time,       // the simulated time limit was reached
+  left_dem,       // the rock left the DEM's extent
+  nodata_area,    // the rock entered cells without elevation
+};
+const char* to_string(StopReason reason);
+
+struct TrajectorySample {
+  double time = 0;                                      // s since release
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();   // centre of mass (m)
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();   // m/s
+  double kinetic_energy = 0;                            // J, translation + rotation
+  double jump_height = 0;                               // m, centre above the (perturbed) ground
+};
+
+class TrajectoryObserver {
+ public:
+  virtual ~TrajectoryObserver() = default;
+  virtual void on_sample(const TrajectorySample& sample) = 0;
+  // Energy dissipated at (x, y) since the last call (J): by friction (sliding, rolling,
+  // vegetation) and by ground deformation (impacts).
+  virtual void on_energy_loss(double x, double y, double friction, double deformation) = 0;
+  virtual void on_stop(const TrajectorySample& last, StopReason reason) = 0;
+};
+
+}  // namespace talus

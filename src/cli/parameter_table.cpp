@@ -1,0 +1,82 @@
+// The parameter table behind scenario files, `talus params` and run.json (DESIGN.md 1).
+#include "parameter_table.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <set>
+
+#include "talus/core/errors.hpp"
+
+namespace talus::cli {
+namespace {
+
+nlohmann::json value_of(const ParameterTable::Target& target) {
+  return std::visit([](auto* value) { return nlohmann::json(*value); }, target);
+}
+
+}  // namespace
+
+void ParameterTable::add(std::string section, std::string name, std::string unit, std::string description, Target target) {
+  entries_.push_back({std::move(section), std::move(name), std::move(unit), std::move(description), target});
+}
+
+nlohmann::json ParameterTable::values() const {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& e : entries_) out[e.section][e.name] = value_of(e.target);
+  return out;
+}
+
+nlohmann::json ParameterTable::describe() const {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& e : entries_) {
+    out.push_back({{"section", e.section}, {"name", e.name}, {"unit", e.unit}, {"description", e.description},
+                   {"default", value_of(e.target)}});
+  }
+  return out;
+}
+
+void ParameterTable::apply_scenario(const std::filesystem::path& scenario, const std::vector<std::string>& ignored_sections) {
+  const std::string name = scenario.string() + " (scenario)";
+  std::error_code ec;
+  if (!std::filesystem::exists(scenario, ec)) throw InputError(name + ": file not found");
+  toml::table table;
+  try {
+    table = toml::parse_file(scenario.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError(name + ": line " + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+  }
+  for (const auto& [section_key, section_node] : table) {
+    const std::string section(section_key.str());
+    if (std::find(ignored_sections.begin(), ignored_sections.end(), section) != ignored_sections.end()) continue;
+    const toml::table* section_table = section_node.as_table();
+    const bool known_section = std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.section == section; });
+    if (section_table == nullptr || !known_section) throw InputError(name + ": unknown section [" + section + "]");
+    for (const auto& [key, node] : *section_table) {
+      auto entry = std::find_if(entries_.begin(), entries_.end(),
+                                [&](const Entry& e) { return e.section == section && e.name == key.str(); });
+      if (entry == entries_.end()) throw InputError(name + ": unknown key '" + std::string(key.str()) + "' in [" + section + "]");
+      const std::string where = "[" + section + "] " + std::string(key.str());
+      std::visit(
+          [&](auto* value) {
+            using T = std::remove_pointer_t<decltype(value)>;
+            if constexpr (std::is_same_v<T, std::string>) {
+              const auto text = node.value<std::string>();
+              if (!text) throw InputError(name + ": " + where + " must be a string");
+              *value = *text;
+            } else if constexpr (std::is_same_v<T, double>) {
+              const auto number = node.value<double>();
+              if (!number) throw InputError(name + ": " + where + " must be a number");
+              *value = *number;
+            } else {
+              const auto integer = node.value<std::int64_t>();
+              if (!integer || *integer < 0) throw InputError(name + ": " + where + " must be a non-negative integer");
+              *value = static_cast<T>(*integer);
+            }
+          },
+          entry->target);
+    }
+  }
+}
+
+}  // namespace talus::cli

@@ -1,0 +1,38 @@
+// Parameters are data (DESIGN.md section 1): every tunable number of a run is listed once
+// here with its section, unit and meaning; the scenario TOML maps onto it 1:1, `talus params`
+// prints it as JSON, and run.json records the resolved values.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace talus::cli {
+
+class ParameterTable {
+ public:
+  using Target = std::variant<double*, int*, std::uint64_t*, std::string*>;
+  struct Entry {
+    std::string section, name, unit, description;
+    Target target;
+  };
+
+  void add(std::string section, std::string name, std::string unit, std::string description, Target target);
+  // {section: {name: value}}: the resolved values, for run.json.
+  nlohmann::json values() const;
+  // [{section, name, unit, description, default}], for `talus params`.
+  nlohmann::json describe() const;
+  // Sets the values found in a scenario file's sections; unknown sections or keys, and values
+  // of the wrong type, are InputError naming the file and the key.
+  void apply_scenario(const std::filesystem::path& scenario, const std::vector<std::string>& ignored_sections);
+  const std::vector<Entry>& entries() const { return entries_; }
+
+ private:
+  std::vector<Entry> entries_;
+};
+
+}  // namespace talus::cli

@@ -1,0 +1,242 @@
+// `talus rockfall` (DESIGN.md section 3, issue 3): stochastic rock-fall trajectories on the
+// user's scene and every rock-fall layer, trajectories.gpkg and run.json.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "parameter_table.hpp"
+#include "terminal_progress.hpp"
+#include "talus/core/errors.hpp"
+#include "talus/gis/layer_writer.hpp"
+#include "talus/gis/run_record.hpp"
+#include "talus/gis/scene.hpp"
+#include "talus/gis/trajectory_writer.hpp"
+#include "talus/rockfall/fast_bounce.hpp"
+#include "talus/rockfall/monte_carlo.hpp"
+
+namespace talus::cli {
+namespace {
+
+struct RockfallOptions {
+  gis::SceneInputs inputs;
+  std::filesystem::path out;
+  std::filesystem::path scenario;
+  std::string mode = "fast";
+  std::string block_shape = "sphere";
+  std::string block_size = "1";
+  RockfallSettings settings;
+  FastBounceParameters fast;
+  std::vector<std::string> command_line;
+};
+
+BlockShape parse_shape(const std::string& text) {
+  if (text == "sphere") return BlockShape::sphere;
+  if (text == "ellipsoid") return BlockShape::ellipsoid;
+  if (text == "box") return BlockShape::box;
+  throw InputError("--block-shape " + text + ": use sphere, ellipsoid or box");
+}
+
+// "D" (a sphere's diameter, or all three axes) or "A,B,C" (m).
+Eigen::Vector3d parse_size(const std::string& text) {
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, ',')) {
+    try {
+      std::size_t used = 0;
+      values.push_back(std::stod(part, &used));
+      if (used != part.size()) throw std::invalid_argument(part);
+    } catch (const std::exception&) {
+      throw InputError("--block-size " + text + ": not a number of metres");
+    }
+  }
+  if (values.size() == 1) values.assign(3, values[0]);
+  if (values.size() != 3) throw InputError("--block-size " + text + ": give D or A,B,C in metres");
+  for (double v : values) {
+    if (!(v > 0.01 && v < 100.0)) throw InputError("--block-size " + text + ": axes must lie between 0.01 and 100 m");
+  }
+  return {values[0], values[1], values[2]};
+}
+
+ParameterTable parameter_table(RockfallOptions& o) {
+  ParameterTable table;
+  table.add("run", "mode", "", "trajectory model: fast (impulse bounces) or full (piston carpet)", &o.mode);
+  table.add("run", "runs", "", "trajectories per release cell or point", &o.settings.runs_per_source);
+  table.add("run", "seed", "", "seed of the counter-based random numbers", &o.settings.seed);
+  table.add("run", "saved_trajectories", "", "at most this many lines in trajectories.gpkg", &o.settings.saved_trajectories);
+  table.add("rock", "shape", "", "sphere, ellipsoid or box", &o.block_shape);
+  table.add("rock", "size", "m", "diameter, or axes A,B,C", &o.block_size);
+  table.add("rock", "density", "kg/m3", "rock density", &o.settings.rock.density);
+  auto& s = o.settings.stochastic;
+  table.add("stochastic", "release_jitter", "-", "release point uniform over this fraction of its cell", &s.release_jitter);
+  table.add("stochastic", "release_height", "m", "start height of the rock's lowest point above the ground", &s.release_height);
+  table.add("stochastic", "size_variation", "-", "axes scaled by U(1-v, 1+v)", &s.size_variation);
+  table.add("stochastic", "density_variation", "-", "density scaled by U(1-v, 1+v)", &s.density_variation);
+  table.add("stochastic", "restitution_variation", "-", "restitutions scaled by U(1-v, 1+v)", &s.restitution_variation);
+  table.add("stochastic", "friction_variation", "-", "friction scaled by U(1-v, 1+v)", &s.friction_variation);
+  table.add("stochastic", "noise_frequency", "-", "Perlin base frequency times the rock diameter", &s.noise_frequency);
+  table.add("stochastic", "noise_octaves", "", "Perlin octaves", &s.noise_octaves);
+  auto& f = o.fast;
+  table.add("fast_bounce", "gravity", "m/s2", "gravitational acceleration", &f.gravity);
+  table.add("fast_bounce", "air_density", "kg/m3", "air density for drag", &f.air_density);
+  table.add("fast_bounce", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &f.drag_coefficient);
+  table.add("fast_bounce", "max_time", "s", "simulated time limit per trajectory", &f.max_time);
+  table.add("fast_bounce", "stop_speed", "m/s", "speed under which a rock held by friction stops", &f.stop_speed);
+  table.add("fast_bounce", "contact_speed", "m/s", "rebound normal speed under which the rock rolls or slides", &f.contact_speed);
+  table.add("fast_bounce", "max_step_length", "m", "longest flight path between two ground checks", &f.max_step_length);
+  table.add("fast_bounce", "sample_spacing", "m", "longest path between two recorded samples", &f.sample_spacing);
+  table.add("fast_bounce", "contact_time_step", "s", "time step of the rolling/sliding phase", &f.contact_time_step);
+  return table;
+}
+
+std::string scenario_text(const RockfallOptions& o) {
+  std::ostringstream text;
+  text << "rockfall " << o.mode << ", " << o.settings.runs_per_source << " runs per source, seed " << o.settings.seed
+       << ", " << o.block_shape << " " << o.block_size << " m, " << o.settings.rock.density << " kg/m3";
+  return text.str();
+}
+
+void write_layers(gis::LayerWriter& writer, const RockfallLayers& layers) {
+  writer.add(layers.reach_probability, {"reach_probability", "Reach probability", ""});
+  writer.add(layers.passages, {"passages", "Number of passages", ""});
+  writer.add(layers.deposits, {"deposits", "Number of deposited rocks", ""});
+  writer.add(layers.energy_max, {"energy_max", "Maximum kinetic energy", "kJ"});
+  writer.add(layers.energy_p95, {"energy_p95", "95th percentile of kinetic energy over passages", "kJ"});
+  writer.add(layers.jump_height_p95, {"jump_height_p95", "95th percentile of jump height over passages", "m"});
+  writer.add(layers.velocity_max, {"velocity_max", "Maximum velocity", "m/s"});
+  writer.add(layers.energy_loss_friction, {"energy_loss_friction", "Energy lost by friction, mean per simulated rock", "kJ"});
+  writer.add(layers.energy_loss_deformation,
+             {"energy_loss_deformation", "Energy lost by ground deformation, mean per simulated rock", "kJ"});
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+int run_rockfall_command(RockfallOptions& o, ParameterTable& table, bool size_given, bool shape_given, bool density_given,
+                         bool runs_given, bool seed_given, bool mode_given) {
+  // Scenario file first, then the flags the user gave on the command line win.
+  if (!o.scenario.empty()) {
+    const RockfallOptions flags = o;
+    table.apply_scenario(o.scenario, {});
+    if (mode_given) o.mode = flags.mode;
+    if (runs_given) o.settings.runs_per_source = flags.settings.runs_per_source;
+    if (seed_given) o.settings.seed = flags.settings.seed;
+    if (shape_given) o.block_shape = flags.block_shape;
+    if (size_given) o.block_size = flags.block_size;
+    if (density_given) o.settings.rock.density = flags.settings.rock.density;
+  }
+  if (o.mode != "fast" && o.mode != "full") throw InputError("--mode " + o.mode + ": use fast or full");
+  if (o.mode == "full") throw InputError("--mode full: the piston-carpet model is not available in this version; use --mode fast");
+  o.settings.rock.shape = parse_shape(o.block_shape);
+  o.settings.rock.axes = parse_size(o.block_size);
+  if (o.settings.rock.shape == BlockShape::sphere && o.settings.rock.axes.maxCoeff() != o.settings.rock.axes.minCoeff()) {
+    throw InputError("--block-size " + o.block_size + ": a sphere has one diameter; use --block-shape ellipsoid or box");
+  }
+  if (!(o.settings.rock.density >= 500.0 && o.settings.rock.density <= 6000.0)) {
+    throw InputError("--density " + std::to_string(o.settings.rock.density) + ": expected 500-6000 kg/m3");
+  }
+  if (o.settings.runs_per_source == 0) throw InputError("--runs 0: at least one run per source");
+  if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
+    throw InputError(o.out.string() + " (--out): exists and is not a folder");
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  gis::RunRecord record;
+  record.set_command_line(o.command_line);
+  const gis::Scene scene = gis::load_scene(o.inputs);
+  const GroundModel ground = scene.ground_model();
+  const std::vector<ReleaseSource> sources = release_sources(*scene.release);
+  const double read_seconds = seconds_since(start);
+  for (const auto& note : scene.notes) std::printf("note: %s\n", note.c_str());
+  for (const auto& problem : scene.problems) std::printf("problem: %s\n", problem.c_str());
+  std::printf("Simulating %zu sources x %llu runs (%s mode) ...\n", sources.size(),
+              static_cast<unsigned long long>(o.settings.runs_per_source), o.mode.c_str());
+  std::fflush(stdout);
+
+  const auto simulate_start = std::chrono::steady_clock::now();
+  const FastBounce model(o.fast);
+  TerminalProgress progress;
+  const RockfallResult result = run_rockfall(ground, sources, model, o.settings, &progress);
+  const double simulate_seconds = seconds_since(simulate_start);
+
+  const auto write_start = std::chrono::steady_clock::now();
+  gis::LayerWriter writer(o.out, {{"TALUS_SCENARIO", scenario_text(o)}});
+  write_layers(writer, result.statistics.layers());
+  gis::add_trajectories(writer, result.lines, ground.spec().crs_wkt);
+
+  record.add_input("dem", o.inputs.dem, &scene.dem.elevation.spec());
+  if (!o.inputs.lithology.empty()) record.add_input("lithology", o.inputs.lithology, nullptr);
+  if (!o.inputs.vegetation.empty()) record.add_input("vegetation", o.inputs.vegetation, nullptr);
+  record.add_input("release", o.inputs.release, nullptr);
+  if (!o.inputs.materials.empty()) record.add_input("materials", o.inputs.materials, nullptr);
+  if (!o.scenario.empty()) record.add_input("scenario", o.scenario, nullptr);
+  record.set_parameters(table.values());
+  nlohmann::json stops = nlohmann::json::object();
+  for (std::size_t r = 0; r < result.stop_counts.size(); ++r) {
+    stops[to_string(static_cast<StopReason>(r))] = result.stop_counts[r];
+  }
+  record.set("seed", o.settings.seed);
+  record.set("threads", result.threads);
+  record.set("counts", {{"sources", sources.size()},
+                        {"trajectories", result.trajectories},
+                        {"stop_reasons", stops},
+                        {"saved_trajectories", result.lines.size()}});
+  record.set("notes", scene.notes);
+  record.set("problems", scene.problems);
+  record.add_timing("read_inputs", read_seconds);
+  record.add_timing("simulate", simulate_seconds);
+  record.add_timing("write_layers", seconds_since(write_start));
+  record.write(writer.temporary_path("run.json"));
+  writer.commit();
+
+  std::printf("%llu trajectories in %.2f s (%.0f per second, %d threads); stopped: ",
+              static_cast<unsigned long long>(result.trajectories), simulate_seconds,
+              static_cast<double>(result.trajectories) / std::max(simulate_seconds, 1e-9), result.threads);
+  for (std::size_t r = 0; r < result.stop_counts.size(); ++r) {
+    std::printf("%s%s %llu", r ? ", " : "", to_string(static_cast<StopReason>(r)),
+                static_cast<unsigned long long>(result.stop_counts[r]));
+  }
+  std::printf("\nLayers written to %s (open the .tif files in QGIS: each has its style beside it)\n", o.out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line) {
+  auto o = std::make_shared<RockfallOptions>();
+  o->command_line = command_line;
+  auto table = std::make_shared<ParameterTable>(parameter_table(*o));
+  CLI::App* cmd = app.add_subcommand("rockfall", "Stochastic rock-fall trajectories and hazard layers");
+  cmd->add_option("--dem", o->inputs.dem, "DEM raster (elevations in metres)")->required();
+  cmd->add_option("--release", o->inputs.release, "Release raster or vector layer (points or polygons)")->required();
+  cmd->add_option("--out", o->out, "Output folder for the layers")->required();
+  cmd->add_option("--lithology", o->inputs.lithology, "Lithology class raster");
+  cmd->add_option("--vegetation", o->inputs.vegetation, "Vegetation raster: class codes or deperdition coefficients (1/m)");
+  cmd->add_option("--materials", o->inputs.materials, "Materials table (TOML); default: built-in");
+  cmd->add_option("--scenario", o->scenario, "Scenario TOML: [run], [rock], [stochastic], [fast_bounce] (see talus params)");
+  auto* mode = cmd->add_option("--mode", o->mode, "Trajectory model: fast or full")->default_val("fast");
+  auto* runs = cmd->add_option("--runs", o->settings.runs_per_source, "Trajectories per release cell or point")->default_val(10);
+  auto* shape = cmd->add_option("--block-shape", o->block_shape, "sphere, ellipsoid or box")->default_val("sphere");
+  auto* size = cmd->add_option("--block-size", o->block_size, "Diameter D, or axes A,B,C (m)")->default_val("1");
+  auto* density = cmd->add_option("--density", o->settings.rock.density, "Rock density (kg/m3)")->default_val(2700.0);
+  auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(1);
+  cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
+  cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
+  cmd->callback([o, table, &action, mode, runs, shape, size, density, seed] {
+    const bool flags[] = {size->count() > 0, shape->count() > 0, density->count() > 0,
+                          runs->count() > 0, seed->count() > 0, mode->count() > 0};
+    action = [o, table, flags] {
+      return run_rockfall_command(*o, *table, flags[0], flags[1], flags[2], flags[3], flags[4], flags[5]);
+    };
+  });
+}
+
+nlohmann::json rockfall_parameters() {
+  RockfallOptions defaults;
+  return parameter_table(defaults).describe();
+}
+
+}  // namespace talus::cli
