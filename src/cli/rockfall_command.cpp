@@ -84,10 +84,13 @@ ParameterTable parameter_table(RockfallOptions& o) {
   table.add("fast_bounce", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &f.drag_coefficient);
   table.add("fast_bounce", "max_time", "s", "simulated time limit per trajectory", &f.max_time);
   table.add("fast_bounce", "stop_speed", "m/s", "speed under which a rock held by friction stops", &f.stop_speed);
-  table.add("fast_bounce", "contact_speed", "m/s", "rebound normal speed under which the rock rolls or slides", &f.contact_speed);
+  table.add("fast_bounce", "contact_speed", "m/s", "touchdown or rebound normal speed under which the rock rolls or slides",
+            &f.contact_speed);
   table.add("fast_bounce", "max_step_length", "m", "longest flight path between two ground checks", &f.max_step_length);
   table.add("fast_bounce", "sample_spacing", "m", "longest path between two recorded samples", &f.sample_spacing);
-  table.add("fast_bounce", "contact_time_step", "s", "time step of the rolling/sliding phase", &f.contact_time_step);
+  table.add("fast_bounce", "contact_time_step", "s", "longest step of the rolling/sliding phase", &f.contact_time_step);
+  table.add("fast_bounce", "contact_tolerance", "m", "ground drop or rise within a contact step that ends it (take-off, shorter step)",
+            &f.contact_tolerance);
   return table;
 }
 

@@ -59,8 +59,8 @@ double PerlinNoise::table_at(std::int64_t i, std::int64_t j) const { return tabl
 // Perlin(x, y) = sum_k 2^-k Perlin0(2^k x, 2^k y), scaled by amplitude / sum_k 2^-k (paper 3.4).
 double PerlinNoise::operator()(double x, double y) const {
   double sum = 0.0;
-  for (int k = 0; k < parameters_.octaves; ++k) {
-    const double scale = std::ldexp(1.0, k);
+  double scale = 1.0;  // 2^k, doubled exactly each octave
+  for (int k = 0; k < parameters_.octaves; ++k, scale *= 2.0) {
     const double lambda = parameters_.base_frequency * scale;
     const LatticeCell cell = lattice_cell(lambda * x, lambda * y);
     const double a = table_at(cell.i, cell.j);
@@ -78,8 +78,8 @@ double PerlinNoise::operator()(double x, double y) const {
 // with the octave weight 2^-k every octave contributes lambda times its patch slope.
 Eigen::Vector2d PerlinNoise::gradient(double x, double y) const {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  for (int k = 0; k < parameters_.octaves; ++k) {
-    const double lambda = parameters_.base_frequency * std::ldexp(1.0, k);
+  double lambda = parameters_.base_frequency;  // lambda 2^k, doubled exactly each octave
+  for (int k = 0; k < parameters_.octaves; ++k, lambda *= 2.0) {
     const LatticeCell cell = lattice_cell(lambda * x, lambda * y);
     const double a = table_at(cell.i, cell.j);
     const double b = table_at(cell.i + 1, cell.j);

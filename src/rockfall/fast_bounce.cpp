@@ -19,7 +19,7 @@ namespace {
 
 constexpr double kTimeTolerance = 1e-9;      // s: a landing is located within this time...
 constexpr double kLandingTolerance = 1e-6;   // m: ...or within this height above the ground
-constexpr double kRiseTolerance = 0.25;      // of contact_tolerance: how closely a rise is located
+constexpr double kRiseTolerance = 0.5;       // of contact_tolerance: how closely a rise is located
 constexpr int kMaxCrossingIterations = 200;
 constexpr double kNodeLineMargin = 1e-4;   // cells: a step ending this close before a node line reached it
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -93,8 +93,9 @@ class FastBounceRun {
  private:
   // --- the three phases ---------------------------------------------------------------------
 
-  // Release: a contact point below the ground (or within contact_tolerance above it) is put on
-  // the ground; a rock touching the ground then leaves it, bounces, or starts in contact.
+  // Release (paper 3.4: one trajectory from its release point): a contact point below the
+  // ground (or within contact_tolerance above it) is put on the ground; a rock touching the
+  // ground then leaves it, bounces (paper 3.3), or starts in contact.
   std::optional<StopReason> begin() {
     if (!ground_.contains(p_.x(), p_.y())) {
       ground_z_ = p_.z();
@@ -151,8 +152,9 @@ class FastBounceRun {
     return std::nullopt;
   }
 
-  // One step of the rolling/sliding phase: constant acceleration along the surface, stop rules,
-  // take-off where the ground falls away, and a new contact where it rises.
+  // One step of the rolling/sliding phase that lets fast-mode rocks come to rest (paper 3.3;
+  // Coulomb and vegetation friction of paper 2.1): constant acceleration along the surface, stop
+  // rules, take-off where the ground falls away, and a new contact where it rises.
   std::optional<StopReason> contact_step() {
     if (t_ >= parameters_.max_time) return StopReason::max_time;
     const double speed = v_.norm();
@@ -200,7 +202,17 @@ class FastBounceRun {
                                  (material.friction * parameters_.gravity * under_.normal.z() +
                                   material.vegetation_deperdition * mean_square_speed);
     const Eigen::Vector3d midpoint = p_ + 0.5 * move.displacement;
-    if (!takes_off) end.z() = point.height + h_end;
+    if (!takes_off) {
+      // Back onto the surface: the lift (or drop) off the tangent plane costs (or gives) m g dz
+      // of kinetic energy, so that following bumps and hollows creates no energy.
+      const double lift = point.height + h_end - end.z();
+      const double square_speed = move.velocity.squaredNorm();
+      if (square_speed > 0.0) {
+        const double kept = square_speed - 2.0 * parameters_.gravity * lift;
+        move.velocity *= kept > 0.0 ? std::sqrt(kept / square_speed) : 0.0;
+      }
+      end.z() += lift;
+    }
     move_to({end, move.velocity}, q_end, h_end, move.duration);
     ground_z_ = point.height;
     if (takes_off) {
@@ -252,8 +264,9 @@ class FastBounceRun {
     report_sample();
   }
 
-  // The rock stays on the surface at `point`: its velocity loses the normal part (reported as
-  // deformation, with the losses the caller passes) and it spins at the rolling value.
+  // Paper 3.3, fast mode's contact: the rock stays on the surface at `point`; its velocity loses
+  // the normal part (reported as deformation, with the losses the caller passes) and it spins at
+  // the rolling value.
   void settle(const GroundPoint& point, const Eigen::Vector3d& at, double friction, double deformation) {
     const double v_normal = v_.dot(point.normal);
     v_ -= v_normal * point.normal;
@@ -264,9 +277,9 @@ class FastBounceRun {
     clearance_ = 0.0;
   }
 
-  // Take-off rule over a convex break: the free flight from the step's start state would end
-  // more than contact_tolerance above the ground, so the ground fell away faster than gravity
-  // can keep the rock on it.
+  // Take-off rule over a convex break (paper 3.3, fast mode): the free flight (paper 3.2) from
+  // the step's start state would end more than contact_tolerance above the ground, so the
+  // ground fell away faster than gravity can keep the rock on it.
   bool flight_clears(double duration, double h_end) const {
     const PointState flown = flight_.advance({p_, v_}, duration);
     if (!ground_.contains(flown.position.x(), flown.position.y())) return false;
@@ -276,9 +289,10 @@ class FastBounceRun {
 
   // --- helpers ------------------------------------------------------------------------------
 
-  // Flight step: at most step_length_ of path, never past the next node line of the DEM (the
-  // bilinear surface's creases, where ridges and cliff edges are), within RK4's accuracy bound,
-  // no further than the apex of a fresh bounce, and not past max_time.
+  // Flight step between ground checks (paper 3.3, step 1; creases of the paper 2.2 surface): at
+  // most step_length_ of path, never past the next node line of the DEM (the bilinear surface's
+  // creases, where ridges and cliff edges are), within RK4's accuracy bound, no further than the
+  // apex of a fresh bounce, and not past max_time.
   double flight_duration() {
     const GridSpec& spec = ground_.model().spec();
     const double to_line = std::min(time_to_node_line(spec.col_of(p_.x()), v_.x() / spec.geotransform[1]),

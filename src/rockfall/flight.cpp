@@ -38,6 +38,7 @@ PointState Flight::advance(const PointState& start, double duration) const {
           start.velocity + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)};
 }
 
+// Paper 3.2: |g - k |v| v| <= g + k |v|^2, the bound the step lengths use.
 double Flight::acceleration_bound(const Eigen::Vector3d& velocity) const {
   return gravity_ + drag_per_mass_ * velocity.squaredNorm();
 }

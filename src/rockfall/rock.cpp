@@ -48,6 +48,7 @@ Eigen::Matrix3d Rock::inertia() const {
       .asDiagonal();
 }
 
+// Paper 3.1 (rock size): half the largest axis.
 double Rock::bounding_radius() const { return semi_axes(*this).maxCoeff(); }
 
 // Paper 3.3, "Fast Bounce mode", step 1: the bottom of the world-aligned bounding box lies at

@@ -13,8 +13,11 @@ struct AirDrag {
   double drag_coefficient = 0.1;   // Cx (-), paper 3.2: 0.1 for a heavy sphere
   double frontal_area = 0.0;       // A (m2)
 
-  // Paper 3.2 over a sphere: -1/2 rho Cx A |v| v (N) for the velocity v (m/s).
-  Eigen::Vector3d force(const Eigen::Vector3d& velocity) const;
+  // Paper 3.2 over a sphere: -1/2 rho Cx A |v| v (N) for the velocity v (m/s). Inline: flight
+  // evaluates it four times per Runge-Kutta step.
+  Eigen::Vector3d force(const Eigen::Vector3d& velocity) const {
+    return -0.5 * air_density * drag_coefficient * frontal_area * velocity.norm() * velocity;
+  }
   // k = rho Cx A / (2 m) (1/m): the drag deceleration of a rock of mass m (kg) is -k |v| v.
   double per_mass(double mass) const;
 };

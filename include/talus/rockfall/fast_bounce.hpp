@@ -19,11 +19,13 @@ struct FastBounceParameters {
   double drag_coefficient = 0.1;      // Cx (-), paper 3.2: 0.1 for a heavy sphere; 0 disables drag
   double max_time = 300.0;            // s of simulated time
   double stop_speed = 0.1;            // m/s: below it, a rock in contact where friction holds stops
-  double contact_speed = 0.5;         // m/s: rebound normal speed below which the rock stays in contact
+  double contact_speed = 0.5;         // m/s: a touchdown or rebound slower than this along the
+                                      // ground normal leaves the rock in contact
   double max_step_length = 1.0;       // m: longest path between two ground checks in flight
   double sample_spacing = 2.5;        // m: longest path between two reported samples
-  double contact_time_step = 0.01;    // s: step of the rolling/sliding phase
-  double contact_tolerance = 0.01;    // m: in contact, a drop of the ground this far below the
+  double contact_time_step = 0.25;    // s: longest step of the rolling/sliding phase (each step is
+                                      // exact on a plane; steps also stay within max_step_length)
+  double contact_tolerance = 0.03;    // m: in contact, a drop of the ground this far below the
                                       // free-flight path makes the rock take off; a rise this far
                                       // above its path ends the step there (a new contact)
 };
