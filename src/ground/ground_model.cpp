@@ -112,6 +112,13 @@ Eigen::Vector3d GroundModel::normal(double x, double y) const {
   return Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized();
 }
 
+// One material field interpolated bilinearly (paper 2.2), for callers that need only it.
+double GroundModel::material_field(double GroundMaterial::*field, double x, double y) const {
+  const NodeSquare s = locate(spec(), x, y);
+  return bilinear(materials_.at(s.col0, s.row0).*field, materials_.at(s.col1, s.row0).*field,
+                  materials_.at(s.col0, s.row1).*field, materials_.at(s.col1, s.row1).*field, s.fx, s.fy);
+}
+
 GroundMaterial GroundModel::material(double x, double y) const {
   const NodeSquare s = locate(spec(), x, y);
   const GroundMaterial& m00 = materials_.at(s.col0, s.row0);

@@ -9,33 +9,6 @@
 namespace talus {
 namespace {
 
-// Lower node index of the square holding the continuous node coordinate u, and the place in it:
-// the same squares as the ground model's interpolation (floor(u) kept within [0, count - 2]).
-int lower_node(double u, int count) {
-  const double last_square = static_cast<double>(count > 1 ? count - 2 : 0);
-  double base = std::floor(u);
-  if (!(base >= 0.0)) base = 0.0;
-  if (base > last_square) base = last_square;
-  return static_cast<int>(base);
-}
-
-// The lithology's noise amplitude A at (x, y), interpolated bilinearly from the nodes exactly as
-// GroundModel::material interpolates it (paper 2.2), without blending the other eight fields.
-double noise_amplitude(const GroundModel& ground, double x, double y) {
-  const GridSpec& spec = ground.spec();
-  const Grid<GroundMaterial>& nodes = ground.material_grid();
-  const double col = spec.col_of(x);
-  const double row = spec.row_of(y);
-  const int col0 = lower_node(col, spec.width);
-  const int row0 = lower_node(row, spec.height);
-  const int col1 = spec.width > 1 ? col0 + 1 : col0;
-  const int row1 = spec.height > 1 ? row0 + 1 : row0;
-  const double fx = col - col0;
-  const double fy = row - row0;
-  return (1.0 - fy) * ((1.0 - fx) * nodes.at(col0, row0).noise_amplitude + fx * nodes.at(col1, row0).noise_amplitude) +
-         fy * ((1.0 - fx) * nodes.at(col0, row1).noise_amplitude + fx * nodes.at(col1, row1).noise_amplitude);
-}
-
 // Paper 3.4, "random variation of material parameters": the trajectory's multipliers, with the
 // restitutions kept at most 1 so that no impact creates energy.
 GroundMaterial varied(GroundMaterial material, const MaterialVariation& variation) {
@@ -59,7 +32,7 @@ PerturbedGround::PerturbedGround(const GroundModel& ground, const PerlinNoise* n
 double PerturbedGround::height(double x, double y) const {
   const double z = ground_.elevation(x, y);
   if (noise_ == nullptr) return z;
-  const double amplitude = noise_amplitude(ground_, x, y);
+  const double amplitude = ground_.material_field(&GroundMaterial::noise_amplitude, x, y);
   return amplitude == 0.0 ? z : z + amplitude * (*noise_)(x, y);
 }
 
@@ -69,7 +42,7 @@ double PerturbedGround::height(double x, double y) const {
 Eigen::Vector3d PerturbedGround::normal(double x, double y) const {
   Eigen::Vector2d gradient = ground_.slope(x, y);
   if (noise_ != nullptr) {
-    const double amplitude = noise_amplitude(ground_, x, y);
+    const double amplitude = ground_.material_field(&GroundMaterial::noise_amplitude, x, y);
     if (amplitude != 0.0) gradient += amplitude * noise_->gradient(x, y);
   }
   return upward_normal(gradient);

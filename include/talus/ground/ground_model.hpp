@@ -43,6 +43,8 @@ class GroundModel {
   Eigen::Vector3d normal(double x, double y) const;
   // Material parameters interpolated bilinearly from the four surrounding nodes.
   GroundMaterial material(double x, double y) const;
+  // One field of material(x, y), e.g. &GroundMaterial::noise_amplitude, without the others.
+  double material_field(double GroundMaterial::*field, double x, double y) const;
 
  private:
   Grid<double> elevation_;
