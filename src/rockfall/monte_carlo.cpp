@@ -53,8 +53,8 @@ class RunObserver final : public TrajectoryObserver {
   void on_energy_loss(double x, double y, double friction, double deformation) override {
     recorder_.on_energy_loss(x, y, friction, deformation);
   }
+  // The model has already reported `last` as the final sample (trajectory_observer.hpp).
   void on_stop(const TrajectorySample& last, StopReason reason) override {
-    on_sample(last);
     stop_reason_ = reason;
     if (line_ != nullptr) {
       line_->stop_reason = reason;
