@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <fstream>
 
-#include <unistd.h>
-
 #include "raster_fixtures.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
@@ -29,8 +27,7 @@ void PrintTo(const BadInput& bad, std::ostream* os) { *os << bad.name; }
 class BadInputs : public ::testing::TestWithParam<BadInput> {
  protected:
   static void SetUpTestSuite() {
-    // One folder per process: ctest runs each case in its own process, in parallel.
-    inputs_ = test::fresh_folder("bad_inputs_" + std::to_string(::getpid()));
+    inputs_ = test::fresh_folder("bad_inputs");
     write_raster(inputs_ / "dem.tif", RasterFixture{});  // UTM 32N, 400 x 300 m
     RasterFixture no_crs;
     no_crs.crs.clear();

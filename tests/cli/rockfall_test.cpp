@@ -6,8 +6,6 @@
 
 #include <gdal_priv.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstring>
 #include <map>
@@ -47,7 +45,7 @@ int run_python(const std::string& arguments) { return std::system(("/usr/bin/pyt
 class SampleRockfall : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = test::fresh_folder("rockfall_sample_" + std::to_string(::getpid()));
+    root_ = test::fresh_folder("rockfall_sample");
     for (const auto& [name, seed, threads] : {std::tuple{"seed1_t1", "1", "1"}, {"seed1_t2", "1", "2"}, {"seed2_t2", "2", "2"}}) {
       results_[name] = test::run_talus(sample_arguments(root_ / name, seed, threads), root_);
     }

@@ -27,8 +27,7 @@ std::string slurp(const std::filesystem::path& path) {
 }  // namespace
 
 ProgramResult run_talus(const std::vector<std::string>& arguments, const std::filesystem::path& working_folder) {
-  const auto capture = std::filesystem::temp_directory_path() / "talus-tests" /
-                       ("capture-" + working_folder.filename().string());
+  const auto capture = working_folder.parent_path() / ("capture-" + working_folder.filename().string());
   std::filesystem::create_directories(capture);
   std::string command = "cd " + quoted(working_folder.string()) + " && " + quoted(talus_exe().string());
   for (const auto& a : arguments) command += " " + quoted(a);

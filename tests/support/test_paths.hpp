@@ -9,7 +9,7 @@ namespace talus::test {
 std::filesystem::path talus_exe();      // the built `talus` program
 std::filesystem::path source_dir();     // the repository root
 std::filesystem::path shared_dir();     // ../shared with the real data sets
-// A fresh, empty temporary folder for one test (removed at the start of the next run).
+// A fresh, empty temporary folder for one test, private to this process.
 std::filesystem::path fresh_folder(const std::string& name);
 
 }  // namespace talus::test
