@@ -3,47 +3,30 @@
 #include "talus/ground/ground_model.hpp"
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <utility>
 
 namespace talus {
 namespace {
 
-// The square of four nodes that holds a point, and the point's place inside it.
-// Nodes (col0, row0), (col1, row0), (col0, row1), (col1, row1); fx, fy are the continuous
-// node coordinates minus col0, row0: in [0, 1] inside the lattice, outside it otherwise.
-struct NodeSquare {
-  int col0 = 0, row0 = 0, col1 = 0, row1 = 0;
-  double fx = 0, fy = 0;
-};
-
 // Lower node index along one axis: floor(u) kept within [0, count - 2], so that the last line
 // of nodes belongs to the square before it and the four nodes always exist (NaN gives 0).
+// Truncation is floor for the non-negative values left after the clamps, without a libm call.
 int lower_node(double u, int count) {
-  const double last_square = static_cast<double>(count > 1 ? count - 2 : 0);
-  double base = std::floor(u);
-  if (!(base >= 0.0)) base = 0.0;
-  if (base > last_square) base = last_square;
-  return static_cast<int>(base);
-}
-
-NodeSquare locate(const GridSpec& spec, double x, double y) {
-  const double col = spec.col_of(x);
-  const double row = spec.row_of(y);
-  NodeSquare square;
-  square.col0 = lower_node(col, spec.width);
-  square.row0 = lower_node(row, spec.height);
-  square.col1 = spec.width > 1 ? square.col0 + 1 : square.col0;
-  square.row1 = spec.height > 1 ? square.row0 + 1 : square.row0;
-  square.fx = col - square.col0;
-  square.fy = row - square.row0;
-  return square;
+  const int last_square = count > 1 ? count - 2 : 0;
+  if (!(u >= 0.0)) return 0;
+  if (u >= static_cast<double>(last_square)) return last_square;
+  return static_cast<int>(u);
 }
 
 // Bilinear blend of the four node values v00 (col0,row0), v10 (col1,row0), v01 (col0,row1),
-// v11 (col1,row1) at (fx, fy): paper fig. 3a.
-double bilinear(double v00, double v10, double v01, double v11, double fx, double fy) {
-  return (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
+// v11 (col1,row1) at (fx, fy) (paper fig. 3a), as the weighted sum with weights (1-fx)(1-fy),
+// fx(1-fy), (1-fx)fy, fx fy. Four equal values give that value exactly, also when it is
+// infinite (an infinite yield pressure: purely elastic ground).
+double bilinear(double v00, double v10, double v01, double v11, const NodeSquare& s) {
+  if (v00 == v10 && v00 == v01 && v00 == v11) return v00;
+  return (1.0 - s.fy) * (1.0 - s.fx) * v00 + (1.0 - s.fy) * s.fx * v10 + s.fy * (1.0 - s.fx) * v01 + s.fy * s.fx * v11;
 }
 
 // Every field of GroundMaterial, so that all of them are interpolated the same way.
@@ -55,6 +38,13 @@ constexpr std::array<double GroundMaterial::*, 9> kMaterialFields{
     &GroundMaterial::vegetation_deperdition};
 static_assert(sizeof(GroundMaterial) == kMaterialFields.size() * sizeof(double),
               "a GroundMaterial field is missing from kMaterialFields");
+
+bool same_material(const GroundMaterial& a, const GroundMaterial& b) {
+  for (const auto field : kMaterialFields) {
+    if (!(a.*field == b.*field)) return false;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -73,38 +63,72 @@ GroundMaterial GroundMaterial::from(const LithologyClass& lithology, double vege
 }
 
 GroundModel::GroundModel(Grid<double> elevation, Grid<GroundMaterial> node_materials)
-    : elevation_(std::move(elevation)), materials_(std::move(node_materials)) {
+    : elevation_(std::move(elevation)),
+      materials_(std::move(node_materials)),
+      square_flags_(elevation_.spec(), 0),
+      inverse_dx_(1.0 / elevation_.spec().geotransform[1]),
+      inverse_dy_(1.0 / elevation_.spec().geotransform[5]) {
   require_same_grid(elevation_.spec(), materials_.spec(), "ground model: elevation and materials");
+  const GridSpec& grid = spec();
+  for (int row = 0; row < grid.height; ++row) {
+    for (int col = 0; col < grid.width; ++col) {
+      const int col1 = grid.width > 1 ? col + 1 : col;
+      const int row1 = grid.height > 1 ? row + 1 : row;
+      const bool valid = elevation_.is_valid(col, row) && elevation_.is_valid(col1, row) &&
+                         elevation_.is_valid(col, row1) && elevation_.is_valid(col1, row1);
+      const GroundMaterial& m = materials_.at(col, row);
+      const bool uniform = same_material(m, materials_.at(col1, row)) && same_material(m, materials_.at(col, row1)) &&
+                           same_material(m, materials_.at(col1, row1));
+      square_flags_.at(col, row) = static_cast<unsigned char>((valid ? kValidSquare : 0) | (uniform ? kUniformMaterial : 0));
+    }
+  }
+}
+
+NodeSquare GroundModel::locate(double x, double y) const {
+  const GridSpec& grid = spec();
+  const double col = (x - grid.geotransform[0]) * inverse_dx_ - 0.5;
+  const double row = (y - grid.geotransform[3]) * inverse_dy_ - 0.5;
+  const int col0 = lower_node(col, grid.width);
+  const int row0 = lower_node(row, grid.height);
+  const std::size_t step_x = grid.width > 1 ? 1 : 0;
+  const std::size_t step_y = grid.height > 1 ? static_cast<std::size_t>(grid.width) : 0;
+  NodeSquare square;
+  square.i00 = elevation_.index(col0, row0);
+  square.i10 = square.i00 + step_x;
+  square.i01 = square.i00 + step_y;
+  square.i11 = square.i01 + step_x;
+  square.fx = col - col0;
+  square.fy = row - row0;
+  return square;
 }
 
 bool GroundModel::contains(double x, double y) const {
   const GridSpec& grid = spec();
-  const double col = grid.col_of(x);
-  const double row = grid.row_of(y);
+  const double col = (x - grid.geotransform[0]) * inverse_dx_ - 0.5;
+  const double row = (y - grid.geotransform[3]) * inverse_dy_ - 0.5;
   // Written so that NaN coordinates fall outside.
   if (!(col >= 0.0 && col <= grid.width - 1.0 && row >= 0.0 && row <= grid.height - 1.0)) return false;
-  const NodeSquare s = locate(grid, x, y);
-  return elevation_.is_valid(s.col0, s.row0) && elevation_.is_valid(s.col1, s.row0) &&
-         elevation_.is_valid(s.col0, s.row1) && elevation_.is_valid(s.col1, s.row1);
+  return (square_flags_.at(lower_node(col, grid.width), lower_node(row, grid.height)) & kValidSquare) != 0;
 }
 
-double GroundModel::elevation(double x, double y) const {
-  const NodeSquare s = locate(spec(), x, y);
-  return bilinear(elevation_.at(s.col0, s.row0), elevation_.at(s.col1, s.row0), elevation_.at(s.col0, s.row1),
-                  elevation_.at(s.col1, s.row1), s.fx, s.fy);
+double GroundModel::elevation(double x, double y) const { return elevation(locate(x, y)); }
+
+double GroundModel::elevation(const NodeSquare& s) const {
+  return bilinear(elevation_[s.i00], elevation_[s.i10], elevation_[s.i01], elevation_[s.i11], s);
 }
 
-// Exact derivative of the bilinear patch: d/dfx and d/dfy, then the chain rule through
-// col_of and row_of (dfx/dx = 1/dx, dfy/dy = 1/geotransform[5], negative for north-up grids).
-Eigen::Vector2d GroundModel::slope(double x, double y) const {
-  const NodeSquare s = locate(spec(), x, y);
-  const double z00 = elevation_.at(s.col0, s.row0);
-  const double z10 = elevation_.at(s.col1, s.row0);
-  const double z01 = elevation_.at(s.col0, s.row1);
-  const double z11 = elevation_.at(s.col1, s.row1);
+Eigen::Vector2d GroundModel::slope(double x, double y) const { return slope(locate(x, y)); }
+
+// Exact derivative of the bilinear patch: d/dfx and d/dfy, then the chain rule through the
+// node coordinates (dfx/dx = 1/dx, dfy/dy = 1/geotransform[5], negative for north-up grids).
+Eigen::Vector2d GroundModel::slope(const NodeSquare& s) const {
+  const double z00 = elevation_[s.i00];
+  const double z10 = elevation_[s.i10];
+  const double z01 = elevation_[s.i01];
+  const double z11 = elevation_[s.i11];
   const double dz_dfx = (1.0 - s.fy) * (z10 - z00) + s.fy * (z11 - z01);
   const double dz_dfy = (1.0 - s.fx) * (z01 - z00) + s.fx * (z11 - z10);
-  return {dz_dfx / spec().geotransform[1], dz_dfy / spec().geotransform[5]};
+  return {dz_dfx * inverse_dx_, dz_dfy * inverse_dy_};
 }
 
 Eigen::Vector3d GroundModel::normal(double x, double y) const {
@@ -114,22 +138,27 @@ Eigen::Vector3d GroundModel::normal(double x, double y) const {
 
 // One material field interpolated bilinearly (paper 2.2), for callers that need only it.
 double GroundModel::material_field(double GroundMaterial::*field, double x, double y) const {
-  const NodeSquare s = locate(spec(), x, y);
-  return bilinear(materials_.at(s.col0, s.row0).*field, materials_.at(s.col1, s.row0).*field,
-                  materials_.at(s.col0, s.row1).*field, materials_.at(s.col1, s.row1).*field, s.fx, s.fy);
+  return material_field(field, locate(x, y));
 }
 
-GroundMaterial GroundModel::material(double x, double y) const {
-  const NodeSquare s = locate(spec(), x, y);
-  const GroundMaterial& m00 = materials_.at(s.col0, s.row0);
-  const GroundMaterial& m10 = materials_.at(s.col1, s.row0);
-  const GroundMaterial& m01 = materials_.at(s.col0, s.row1);
-  const GroundMaterial& m11 = materials_.at(s.col1, s.row1);
-  GroundMaterial blended;
-  for (const auto field : kMaterialFields) {
-    blended.*field = bilinear(m00.*field, m10.*field, m01.*field, m11.*field, s.fx, s.fy);
-  }
-  return blended;
+double GroundModel::material_field(double GroundMaterial::*field, const NodeSquare& s) const {
+  return bilinear(materials_[s.i00].*field, materials_[s.i10].*field, materials_[s.i01].*field,
+                  materials_[s.i11].*field, s);
+}
+
+GroundMaterial GroundModel::material(double x, double y) const { return material(locate(x, y)); }
+
+// Every field blended as material_field() does (paper 2.2), read as arrays of doubles.
+GroundMaterial GroundModel::material(const NodeSquare& s) const {
+  if ((square_flags_[s.i00] & kUniformMaterial) != 0) return materials_[s.i00];
+  using Fields = std::array<double, kMaterialFields.size()>;
+  const auto m00 = std::bit_cast<Fields>(materials_[s.i00]);
+  const auto m10 = std::bit_cast<Fields>(materials_[s.i10]);
+  const auto m01 = std::bit_cast<Fields>(materials_[s.i01]);
+  const auto m11 = std::bit_cast<Fields>(materials_[s.i11]);
+  Fields blended;
+  for (std::size_t k = 0; k < blended.size(); ++k) blended[k] = bilinear(m00[k], m10[k], m01[k], m11[k], s);
+  return std::bit_cast<GroundMaterial>(blended);
 }
 
 }  // namespace talus

@@ -15,31 +15,25 @@ namespace {
 constexpr std::uint64_t kTableSource = 0x5045524C494E3334ULL;  // "PERLIN34"
 constexpr std::uint64_t kTableRun = 0;
 
-// Hash(i, j): an odd-multiplier combination of the two lattice coordinates (two's complement,
-// so negative coordinates are fine), then the xor-shift-multiply finaliser of MurmurHash3
-// (Appleby), whose top table_bits bits index Tab[].
-std::size_t lattice_hash(std::int64_t i, std::int64_t j, int table_bits) {
-  std::uint64_t h =
-      static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(j) * 0xD1B54A32D192ED03ULL;
-  h ^= h >> 33;
-  h *= 0xFF51AFD7ED558CCDULL;
-  h ^= h >> 33;
-  h *= 0xC4CEB9FE1A85EC53ULL;
-  h ^= h >> 33;
+constexpr std::uint64_t kHashX = 0x9E3779B97F4A7C15ULL;
+constexpr std::uint64_t kHashY = 0xD1B54A32D192ED03ULL;
+
+// Hash(i, j) from its combination h = i kHashX + j kHashY (odd multipliers, two's complement, so
+// negative coordinates are fine): one xor-shift-multiply-xor-shift round (a single round of the
+// mixers of Steele et al.'s SplitMix64 family), whose top table_bits bits index Tab[].
+// Neighbouring lattice points differ in h by kHashX or kHashY, so the four corners of a square
+// share one combination.
+std::size_t finalised_hash(std::uint64_t h, int table_bits) {
+  h ^= h >> 32;
+  h *= 0xD6E8FEB86659FD93ULL;
+  h ^= h >> 32;
   return static_cast<std::size_t>(h >> (64 - table_bits));
 }
 
-// One Perlin0 lattice square at scaled coordinates (u, v) = (lambda x, lambda y): its corner
-// E(u), E(v) and the fractional parts frac(u), frac(v).
-struct LatticeCell {
-  std::int64_t i, j;
-  double fu, fv;
-};
-
-LatticeCell lattice_cell(double u, double v) {
-  const double floor_u = std::floor(u);
-  const double floor_v = std::floor(v);
-  return {static_cast<std::int64_t>(floor_u), static_cast<std::int64_t>(floor_v), u - floor_u, v - floor_v};
+// E(u): the integral part, floor(u), for |u| < 2^63 without a libm call.
+std::int64_t integral_part(double u) {
+  const auto truncated = static_cast<std::int64_t>(u);
+  return u < static_cast<double>(truncated) ? truncated - 1 : truncated;
 }
 
 }  // namespace
@@ -54,41 +48,58 @@ PerlinNoise::PerlinNoise(const PerlinParameters& parameters)
   octave_norm_ = weight_sum > 0.0 ? 1.0 / weight_sum : 0.0;
 }
 
-double PerlinNoise::table_at(std::int64_t i, std::int64_t j) const { return table_[lattice_hash(i, j, parameters_.table_bits)]; }
+// One Perlin0 lattice square at scaled coordinates (u, v) = (lambda x, lambda y) (paper 3.4):
+// A = Tab[Hash(E(u), E(v))], B = Tab[Hash(E(u) + 1, E(v))], C = Tab[Hash(E(u), E(v) + 1)],
+// D = Tab[Hash(E(u) + 1, E(v) + 1)], and frac(u), frac(v).
+struct PerlinNoise::Corners {
+  double a, b, c, d, fu, fv;
+  // Perlin0 = BilinearInterpol(A, B, C, D, frac(u), frac(v)).
+  double perlin0() const { return (1.0 - fv) * ((1.0 - fu) * a + fu * b) + fv * ((1.0 - fu) * c + fu * d); }
+};
+
+PerlinNoise::Corners PerlinNoise::corners(double u, double v) const {
+  const std::int64_t i = integral_part(u);
+  const std::int64_t j = integral_part(v);
+  const std::uint64_t h = static_cast<std::uint64_t>(i) * kHashX + static_cast<std::uint64_t>(j) * kHashY;
+  const int bits = parameters_.table_bits;
+  return {table_[finalised_hash(h, bits)],
+          table_[finalised_hash(h + kHashX, bits)],
+          table_[finalised_hash(h + kHashY, bits)],
+          table_[finalised_hash(h + kHashX + kHashY, bits)],
+          u - static_cast<double>(i),
+          v - static_cast<double>(j)};
+}
 
 // Perlin(x, y) = sum_k 2^-k Perlin0(2^k x, 2^k y), scaled by amplitude / sum_k 2^-k (paper 3.4).
 double PerlinNoise::operator()(double x, double y) const {
   double sum = 0.0;
   double scale = 1.0;  // 2^k, doubled exactly each octave
-  for (int k = 0; k < parameters_.octaves; ++k, scale *= 2.0) {
+  double weight = 1.0;  // 2^-k, halved exactly each octave
+  for (int k = 0; k < parameters_.octaves; ++k, scale *= 2.0, weight *= 0.5) {
     const double lambda = parameters_.base_frequency * scale;
-    const LatticeCell cell = lattice_cell(lambda * x, lambda * y);
-    const double a = table_at(cell.i, cell.j);
-    const double b = table_at(cell.i + 1, cell.j);
-    const double c = table_at(cell.i, cell.j + 1);
-    const double d = table_at(cell.i + 1, cell.j + 1);
-    const double perlin0 =
-        (1.0 - cell.fv) * ((1.0 - cell.fu) * a + cell.fu * b) + cell.fv * ((1.0 - cell.fu) * c + cell.fu * d);
-    sum += perlin0 / scale;
+    const Corners q = corners(lambda * x, lambda * y);
+    sum += weight * q.perlin0();
   }
   return parameters_.amplitude * octave_norm_ * sum;
 }
 
-// Derivative of each bilinear patch in (frac(u), frac(v)), times d(lambda 2^k x)/dx = lambda 2^k;
-// with the octave weight 2^-k every octave contributes lambda times its patch slope.
-Eigen::Vector2d PerlinNoise::gradient(double x, double y) const {
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  double lambda = parameters_.base_frequency;  // lambda 2^k, doubled exactly each octave
-  for (int k = 0; k < parameters_.octaves; ++k, lambda *= 2.0) {
-    const LatticeCell cell = lattice_cell(lambda * x, lambda * y);
-    const double a = table_at(cell.i, cell.j);
-    const double b = table_at(cell.i + 1, cell.j);
-    const double c = table_at(cell.i, cell.j + 1);
-    const double d = table_at(cell.i + 1, cell.j + 1);
-    sum.x() += (1.0 - cell.fv) * (b - a) + cell.fv * (d - c);
-    sum.y() += (1.0 - cell.fu) * (c - a) + cell.fu * (d - b);
+// The value as operator(), and the derivative of each bilinear patch in (frac(u), frac(v)) times
+// d(lambda 2^k x)/dx = lambda 2^k: with the octave weight 2^-k every octave contributes lambda
+// times its patch slope.
+NoiseSample PerlinNoise::sample(double x, double y) const {
+  double sum = 0.0;
+  Eigen::Vector2d slope_sum = Eigen::Vector2d::Zero();
+  double scale = 1.0;  // 2^k, doubled exactly each octave
+  double weight = 1.0;  // 2^-k, halved exactly each octave
+  for (int k = 0; k < parameters_.octaves; ++k, scale *= 2.0, weight *= 0.5) {
+    const double lambda = parameters_.base_frequency * scale;
+    const Corners q = corners(lambda * x, lambda * y);
+    sum += weight * q.perlin0();
+    slope_sum.x() += (1.0 - q.fv) * (q.b - q.a) + q.fv * (q.d - q.c);
+    slope_sum.y() += (1.0 - q.fu) * (q.c - q.a) + q.fu * (q.d - q.b);
   }
-  return parameters_.amplitude * octave_norm_ * parameters_.base_frequency * sum;
+  const double norm = parameters_.amplitude * octave_norm_;
+  return {norm * sum, norm * parameters_.base_frequency * slope_sum};
 }
 
 }  // namespace talus

@@ -30,9 +30,10 @@ PerturbedGround::PerturbedGround(const GroundModel& ground, const PerlinNoise* n
 // Paper 3.4: z(x, y) + A(x, y) Perlin(x, y), with Perlin of unit amplitude and A the noise
 // amplitude interpolated bilinearly from the nodes' lithology (paper 2.2).
 double PerturbedGround::height(double x, double y) const {
-  const double z = ground_.elevation(x, y);
+  const NodeSquare square = ground_.locate(x, y);
+  const double z = ground_.elevation(square);
   if (noise_ == nullptr) return z;
-  const double amplitude = ground_.material_field(&GroundMaterial::noise_amplitude, x, y);
+  const double amplitude = ground_.material_field(&GroundMaterial::noise_amplitude, square);
   return amplitude == 0.0 ? z : z + amplitude * (*noise_)(x, y);
 }
 
@@ -40,9 +41,10 @@ double PerturbedGround::height(double x, double y) const {
 // non-zero only where the lithology changes between nodes, is left out: it is at most
 // |A1 - A2| / cell (a few hundredths), and keeping it would need the amplitude's own gradient.
 Eigen::Vector3d PerturbedGround::normal(double x, double y) const {
-  Eigen::Vector2d gradient = ground_.slope(x, y);
+  const NodeSquare square = ground_.locate(x, y);
+  Eigen::Vector2d gradient = ground_.slope(square);
   if (noise_ != nullptr) {
-    const double amplitude = ground_.material_field(&GroundMaterial::noise_amplitude, x, y);
+    const double amplitude = ground_.material_field(&GroundMaterial::noise_amplitude, square);
     if (amplitude != 0.0) gradient += amplitude * noise_->gradient(x, y);
   }
   return upward_normal(gradient);
@@ -52,15 +54,17 @@ GroundMaterial PerturbedGround::material(double x, double y) const {
   return varied(ground_.material(x, y), variation_);
 }
 
-// height(), normal() and material() with one material interpolation for all three.
+// height(), normal() and material() from one node-square look-up and one pass over the noise.
 GroundPoint PerturbedGround::at(double x, double y) const {
-  const GroundMaterial material = ground_.material(x, y);
+  const NodeSquare square = ground_.locate(x, y);
+  const GroundMaterial material = ground_.material(square);
   GroundPoint point;
-  point.height = ground_.elevation(x, y);
-  Eigen::Vector2d gradient = ground_.slope(x, y);
+  point.height = ground_.elevation(square);
+  Eigen::Vector2d gradient = ground_.slope(square);
   if (noise_ != nullptr && material.noise_amplitude != 0.0) {
-    point.height += material.noise_amplitude * (*noise_)(x, y);
-    gradient += material.noise_amplitude * noise_->gradient(x, y);
+    const NoiseSample noise = noise_->sample(x, y);
+    point.height += material.noise_amplitude * noise.value;
+    gradient += material.noise_amplitude * noise.gradient;
   }
   point.normal = upward_normal(gradient);
   point.material = varied(material, variation_);

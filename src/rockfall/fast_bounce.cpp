@@ -141,13 +141,14 @@ class FastBounceRun {
       sample_if_due();
       return std::nullopt;
     }
+    const FlightArc arc(from, end, dt);
     const auto clearance_at = [&](double tau) {
-      const PointState s = flight_.advance(from, tau);
+      const PointState s = arc.at(tau);
       return s.position.z() - half_height(rotated(tau)) - ground_.height(s.position.x(), s.position.y());
     };
     const double tau = last_time_above(clearance_at, 0.0, clearance_, dt, clearance, kLandingTolerance);
     const Eigen::Quaterniond q_touch = rotated(tau);
-    move_to(flight_.advance(from, tau), q_touch, half_height(q_touch), tau);
+    move_to(arc.at(tau), q_touch, half_height(q_touch), tau);
     land(ground_.at(p_.x(), p_.y()), true);
     return std::nullopt;
   }

@@ -8,14 +8,14 @@ namespace talus {
 
 Flight::Flight(double gravity, const AirDrag& drag, double mass)
     : gravity_(gravity),
-      drag_(drag),
-      inverse_mass_(1.0 / mass),
       drag_per_mass_(drag.per_mass(mass)),
       terminal_speed_(drag_per_mass_ > 0.0 ? std::sqrt(gravity / drag_per_mass_) : 0.0) {}
 
-// Paper 3.2: gravity plus the drag force over the mass.
+// Paper 3.2: gravity plus the drag force over the mass, -k |v| v.
 Eigen::Vector3d Flight::acceleration(const Eigen::Vector3d& velocity) const {
-  return Eigen::Vector3d(0.0, 0.0, -gravity_) + inverse_mass_ * drag_.force(velocity);
+  Eigen::Vector3d a = (-drag_per_mass_ * velocity.norm()) * velocity;
+  a.z() -= gravity_;
+  return a;
 }
 
 // Without drag, x(t) = x0 + v0 t + g t^2 / 2 exactly (the projectile's closed form). With drag,
@@ -48,6 +48,24 @@ double Flight::acceleration_bound(const Eigen::Vector3d& velocity) const {
 double Flight::max_duration(const Eigen::Vector3d& velocity) const {
   if (!has_drag()) return std::numeric_limits<double>::infinity();
   return 0.02 / (drag_per_mass_ * (velocity.norm() + terminal_speed_));
+}
+
+FlightArc::FlightArc(const PointState& start, const PointState& end, double duration)
+    : start_(start), end_(end), duration_(duration) {}
+
+// Cubic Hermite basis on s = tau / duration: p(s) = h00 p0 + h10 T v0 + h01 p1 + h11 T v1 with
+// h00 = 2s^3 - 3s^2 + 1, h10 = s^3 - 2s^2 + s, h01 = -2s^3 + 3s^2, h11 = s^3 - s^2, and its
+// derivative over T for the velocity.
+PointState FlightArc::at(double tau) const {
+  if (duration_ <= 0.0) return start_;
+  const double s = tau / duration_;
+  const double s2 = s * s, s3 = s2 * s;
+  const double T = duration_;
+  const Eigen::Vector3d position = (2.0 * s3 - 3.0 * s2 + 1.0) * start_.position + (T * (s3 - 2.0 * s2 + s)) * start_.velocity +
+                                   (3.0 * s2 - 2.0 * s3) * end_.position + (T * (s3 - s2)) * end_.velocity;
+  const Eigen::Vector3d velocity = ((6.0 * s2 - 6.0 * s) / T) * (start_.position - end_.position) +
+                                   (3.0 * s2 - 4.0 * s + 1.0) * start_.velocity + (3.0 * s2 - 2.0 * s) * end_.velocity;
+  return {position, velocity};
 }
 
 // Positive root of (a / 2) t^2 + speed t - length = 0, written without cancellation.

@@ -43,7 +43,7 @@ class RunObserver final : public TrajectoryObserver {
     has_last_ = false;
   }
   void on_sample(const TrajectorySample& sample) override {
-    if (has_last_) path_length_ += std::hypot(sample.position.x() - last_.x(), sample.position.y() - last_.y());
+    if (has_last_) path_length_ += (sample.position - last_).head<2>().norm();
     last_ = sample.position;
     has_last_ = true;
     max_energy_ = std::max(max_energy_, sample.kinetic_energy);

@@ -2,6 +2,8 @@
 // DEM nodes (cell centres) and interpolated bilinearly between them.
 #pragma once
 
+#include <cstddef>
+
 #include <Eigen/Core>
 
 #include "talus/core/grid.hpp"
@@ -22,6 +24,13 @@ struct GroundMaterial {
   double vegetation_deperdition = 0; // 1/m
 
   static GroundMaterial from(const LithologyClass& lithology, double vegetation_deperdition);
+};
+
+// The square of four DEM nodes that holds a point (paper 2.2, fig. 3a) and the point's place in
+// it: one look-up that elevation, slope and material at that point share.
+struct NodeSquare {
+  std::size_t i00 = 0, i10 = 0, i01 = 0, i11 = 0;  // flat indices of nodes (col0,row0), (col1,row0), (col0,row1), (col1,row1)
+  double fx = 0, fy = 0;                           // continuous node coordinates minus col0, row0
 };
 
 class GroundModel {
@@ -46,9 +55,21 @@ class GroundModel {
   // One field of material(x, y), e.g. &GroundMaterial::noise_amplitude, without the others.
   double material_field(double GroundMaterial::*field, double x, double y) const;
 
+  // The node square of (x, y), and the four queries above on it (the same values).
+  NodeSquare locate(double x, double y) const;
+  double elevation(const NodeSquare& square) const;
+  Eigen::Vector2d slope(const NodeSquare& square) const;
+  GroundMaterial material(const NodeSquare& square) const;
+  double material_field(double GroundMaterial::*field, const NodeSquare& square) const;
+
  private:
   Grid<double> elevation_;
   Grid<GroundMaterial> materials_;
+  // Per node square, by its lower-left node: kValidSquare when its four nodes have elevations,
+  // kUniformMaterial when they share one material (then no blending is needed).
+  static constexpr unsigned char kValidSquare = 1, kUniformMaterial = 2;
+  Grid<unsigned char> square_flags_;
+  double inverse_dx_, inverse_dy_;     // 1 / geotransform[1], 1 / geotransform[5]
 };
 
 }  // namespace talus

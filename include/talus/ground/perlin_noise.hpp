@@ -22,6 +22,12 @@ struct PerlinParameters {
   int table_bits = 12;
 };
 
+// Noise height and its gradient at one point, from one pass over the octaves.
+struct NoiseSample {
+  double value = 0;                                    // m
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();  // (d/dx, d/dy) of the value (-)
+};
+
 class PerlinNoise {
  public:
   explicit PerlinNoise(const PerlinParameters& parameters);
@@ -29,11 +35,14 @@ class PerlinNoise {
   // Noise height (m) at (x, y) in metres.
   double operator()(double x, double y) const;
   // Gradient (d/dx, d/dy) of the noise height, for the normals of the perturbed ground.
-  Eigen::Vector2d gradient(double x, double y) const;
+  Eigen::Vector2d gradient(double x, double y) const { return sample(x, y).gradient; }
+  // Value and gradient together (equal to the two calls above).
+  NoiseSample sample(double x, double y) const;
   const PerlinParameters& parameters() const { return parameters_; }
 
  private:
-  double table_at(std::int64_t i, std::int64_t j) const;  // Tab[Hash(i, j)]
+  struct Corners;  // A, B, C, D of one lattice square and the point's place in it
+  Corners corners(double u, double v) const;
   PerlinParameters parameters_;
   std::vector<double> table_;    // uniform in [-1, 1]
   double octave_norm_;           // 1 / (1 + 1/2 + 1/4 + ...)

@@ -31,10 +31,22 @@ class Flight {
  private:
   Eigen::Vector3d acceleration(const Eigen::Vector3d& velocity) const;
   double gravity_;
-  AirDrag drag_;
-  double inverse_mass_;
   double drag_per_mass_;     // k (1/m)
   double terminal_speed_;    // sqrt(g / k) (m/s)
+};
+
+// One flight step as a curve in time, for locating ground crossings inside it without
+// re-integrating: the cubic Hermite interpolant of the positions and velocities at the step's
+// two ends (the step's dense output). It reproduces the drag-free parabola exactly; with drag
+// its error is of order duration^4 times the drag's rate of change of acceleration.
+class FlightArc {
+ public:
+  FlightArc(const PointState& start, const PointState& end, double duration);
+  PointState at(double tau) const;  // state tau seconds after the start, 0 <= tau <= duration
+
+ private:
+  PointState start_, end_;
+  double duration_;
 };
 
 // Longest time (s) in which a point starting at `speed` (m/s) with an acceleration of magnitude at

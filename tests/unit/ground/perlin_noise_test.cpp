@@ -99,6 +99,16 @@ TEST(PerlinNoise, TheHashRepeatsNeitherPeriodicallyNorSymmetrically) {
   EXPECT_LT(mirrored, 12);
 }
 
+TEST(PerlinNoise, OneSampleEqualsValueAndGradient) {
+  // sample() shares one pass over the octaves between the value and the gradient: the same bits.
+  const PerlinNoise noise = make_noise(0.8, 0.3, 3, 17);
+  for (const Eigen::Vector2d& p : random_points(500, 60.0, 4)) {
+    const NoiseSample sample = noise.sample(p.x(), p.y());
+    EXPECT_EQ(sample.value, noise(p.x(), p.y()));
+    EXPECT_EQ(sample.gradient, noise.gradient(p.x(), p.y()));
+  }
+}
+
 TEST(PerlinNoise, OctavesAreHalvedCopiesOfPerlin0AtDoubledFrequency) {
   // Perlin = (Perlin0(x) + 1/2 Perlin0(2x) + 1/4 Perlin0(4x) + ...) / (1 + 1/2 + 1/4 + ...).
   const PerlinNoise base = make_noise(0.3, 0.7, 1, 9);
