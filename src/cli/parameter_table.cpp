@@ -21,6 +21,12 @@ void ParameterTable::add(std::string section, std::string name, std::string unit
   entries_.push_back({std::move(section), std::move(name), std::move(unit), std::move(description), target});
 }
 
+void ParameterTable::pin(const std::string& section, const std::string& name) {
+  for (auto& e : entries_) {
+    if (e.section == section && e.name == name) e.pinned = true;
+  }
+}
+
 nlohmann::json ParameterTable::values() const {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& e : entries_) out[e.section][e.name] = value_of(e.target);
@@ -60,18 +66,23 @@ void ParameterTable::apply_scenario(const std::filesystem::path& scenario, const
       std::visit(
           [&](auto* value) {
             using T = std::remove_pointer_t<decltype(value)>;
+            const bool keep = entry->pinned;
             if constexpr (std::is_same_v<T, std::string>) {
               const auto text = node.value<std::string>();
               if (!text) throw InputError(name + ": " + where + " must be a string");
-              *value = *text;
+              if (!keep) *value = *text;
             } else if constexpr (std::is_same_v<T, double>) {
               const auto number = node.value<double>();
               if (!number) throw InputError(name + ": " + where + " must be a number");
-              *value = *number;
+              if (!keep) *value = *number;
+            } else if constexpr (std::is_same_v<T, bool>) {
+              const auto flag = node.value<bool>();
+              if (!flag) throw InputError(name + ": " + where + " must be true or false");
+              if (!keep) *value = *flag;
             } else {
               const auto integer = node.value<std::int64_t>();
               if (!integer || *integer < 0) throw InputError(name + ": " + where + " must be a non-negative integer");
-              *value = static_cast<T>(*integer);
+              if (!keep) *value = static_cast<T>(*integer);
             }
           },
           entry->target);

@@ -15,10 +15,11 @@ namespace talus::cli {
 
 class ParameterTable {
  public:
-  using Target = std::variant<double*, int*, std::uint64_t*, std::string*>;
+  using Target = std::variant<double*, int*, std::uint64_t*, std::string*, bool*>;
   struct Entry {
     std::string section, name, unit, description;
     Target target;
+    bool pinned = false;  // given on the command line: a scenario file does not override it
   };
 
   void add(std::string section, std::string name, std::string unit, std::string description, Target target);
@@ -26,8 +27,10 @@ class ParameterTable {
   nlohmann::json values() const;
   // [{section, name, unit, description, default}], for `talus params`.
   nlohmann::json describe() const;
-  // Sets the values found in a scenario file's sections; unknown sections or keys, and values
-  // of the wrong type, are InputError naming the file and the key.
+  // Marks an entry as given on the command line, so that the scenario file leaves it alone.
+  void pin(const std::string& section, const std::string& name);
+  // Sets the values found in a scenario file's sections, except pinned ones; unknown sections or
+  // keys, and values of the wrong type, are InputError naming the file and the key.
   void apply_scenario(const std::filesystem::path& scenario, const std::vector<std::string>& ignored_sections);
   const std::vector<Entry>& entries() const { return entries_; }
 

@@ -1,6 +1,8 @@
 // `talus rockfall` (DESIGN.md section 3, issue 3): stochastic rock-fall trajectories on the
 // user's scene and every rock-fall layer, trajectories.gpkg and run.json.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -14,6 +16,7 @@
 #include "talus/gis/scene.hpp"
 #include "talus/gis/trajectory_writer.hpp"
 #include "talus/rockfall/fast_bounce.hpp"
+#include "talus/rockfall/full_model.hpp"
 #include "talus/rockfall/monte_carlo.hpp"
 
 namespace talus::cli {
@@ -28,6 +31,7 @@ struct RockfallOptions {
   std::string block_size = "1";
   RockfallSettings settings;
   FastBounceParameters fast;
+  FullModelParameters full;
   std::vector<std::string> command_line;
 };
 
@@ -91,6 +95,32 @@ ParameterTable parameter_table(RockfallOptions& o) {
   table.add("fast_bounce", "contact_time_step", "s", "longest step of the rolling/sliding phase", &f.contact_time_step);
   table.add("fast_bounce", "contact_tolerance", "m", "ground drop or rise within a contact step that ends it (take-off, shorter step)",
             &f.contact_tolerance);
+  auto& m = o.full;
+  table.add("full", "gravity", "m/s2", "gravitational acceleration", &m.gravity);
+  table.add("full", "air_density", "kg/m3", "air density for drag", &m.air_density);
+  table.add("full", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &m.drag_coefficient);
+  table.add("full", "max_time", "s", "simulated time limit per trajectory", &m.max_time);
+  table.add("full", "stop_speed", "m/s", "mean speed of centre and rim over stop_duration under which a rock in contact is at rest",
+            &m.stop_speed);
+  table.add("full", "stop_duration", "s", "window over which the mean speed is compared with stop_speed", &m.stop_duration);
+  table.add("full", "carpet_spacing", "-", "piston spacing as a fraction of the rock's diameter", &m.carpet_spacing);
+  table.add("full", "time_step_factor", "-", "contact step as a fraction of the stiffest contact period", &m.time_step_factor);
+  table.add("full", "max_flight_step", "s", "longest time step in flight", &m.max_flight_step);
+  table.add("full", "sample_spacing", "m", "longest path between two recorded samples", &m.sample_spacing);
+  table.add("full", "friction_slip_speed", "m/s", "slip speed below which Coulomb friction is regularised", &m.friction_slip_speed);
+  table.add("full", "rolling_resistance", "-", "rolling friction coefficient as a multiple of the lithology's friction (0: pure rolling)",
+            &m.rolling_resistance);
+  table.add("full", "guard", "", "detect blown-up steps and retry them with smaller steps", &m.guard);
+  table.add("full", "max_retries", "", "step halvings before a run fails with exit code 3", &m.max_retries);
+  table.add("full", "approach_fraction", "-", "per step, a piston top may be approached by this fraction of the spacing beyond its gap",
+            &m.approach_fraction);
+  table.add("full", "fresh_contact_pistons", "", "a coming contact's stiffness counts this many pistons at k3", &m.fresh_contact_pistons);
+  table.add("full", "grazing_cosine", "-", "floor of |normal . piston axis| in the piston force", &m.grazing_cosine);
+  table.add("full", "guard_tolerance", "-", "energy growth per step, relative to kinetic + elastic + m g spacing, that counts as blow-up",
+            &m.guard_tolerance);
+  table.add("full", "carpet_margin", "m", "extra width of the piston carpet around the rock's footprint", &m.carpet_margin);
+  table.add("full", "surface_samples", "", "surface samples of the rock (air drag integral)", &m.surface_samples);
+  table.add("full", "mass_resolution", "", "cells per axis of the mass and inertia integration", &m.mass_resolution);
   return table;
 }
 
@@ -114,25 +144,33 @@ void write_layers(gis::LayerWriter& writer, const RockfallLayers& layers) {
              {"energy_loss_deformation", "Energy lost by ground deformation, mean per simulated rock", "kJ"});
 }
 
+// Median, 95th percentile (nearest rank) and maximum of the runs' horizontal path lengths (m).
+nlohmann::json runout_summary(std::vector<double> runouts) {
+  if (runouts.empty()) return {{"median_m", 0.0}, {"p95_m", 0.0}, {"max_m", 0.0}};
+  std::sort(runouts.begin(), runouts.end());
+  const auto rank = [&](double q) {
+    const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(runouts.size())));
+    return runouts[std::clamp<std::size_t>(k, 1, runouts.size()) - 1];
+  };
+  const std::size_t n = runouts.size();
+  const double median = n % 2 == 1 ? runouts[n / 2] : 0.5 * (runouts[n / 2 - 1] + runouts[n / 2]);
+  return {{"median_m", median}, {"p95_m", rank(0.95)}, {"max_m", runouts.back()}};
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-int run_rockfall_command(RockfallOptions& o, ParameterTable& table, bool size_given, bool shape_given, bool density_given,
-                         bool runs_given, bool seed_given, bool mode_given) {
-  // Scenario file first, then the flags the user gave on the command line win.
-  if (!o.scenario.empty()) {
-    const RockfallOptions flags = o;
-    table.apply_scenario(o.scenario, {});
-    if (mode_given) o.mode = flags.mode;
-    if (runs_given) o.settings.runs_per_source = flags.settings.runs_per_source;
-    if (seed_given) o.settings.seed = flags.settings.seed;
-    if (shape_given) o.block_shape = flags.block_shape;
-    if (size_given) o.block_size = flags.block_size;
-    if (density_given) o.settings.rock.density = flags.settings.rock.density;
-  }
+// The trajectory model the run uses: fast bounce or the full piston-carpet model.
+std::unique_ptr<TrajectoryModel> trajectory_model(const RockfallOptions& o) {
+  if (o.mode == "fast") return std::make_unique<FastBounce>(o.fast);
+  return std::make_unique<FullModel>(o.full);
+}
+
+int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
+  // The scenario file sets every parameter it names, except those given as flags (pinned).
+  if (!o.scenario.empty()) table.apply_scenario(o.scenario, {});
   if (o.mode != "fast" && o.mode != "full") throw InputError("--mode " + o.mode + ": use fast or full");
-  if (o.mode == "full") throw InputError("--mode full: the piston-carpet model is not available in this version; use --mode fast");
   o.settings.rock.shape = parse_shape(o.block_shape);
   o.settings.rock.axes = parse_size(o.block_size);
   if (o.settings.rock.shape == BlockShape::sphere && o.settings.rock.axes.maxCoeff() != o.settings.rock.axes.minCoeff()) {
@@ -160,9 +198,9 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table, bool size_gi
   std::fflush(stdout);
 
   const auto simulate_start = std::chrono::steady_clock::now();
-  const FastBounce model(o.fast);
+  const std::unique_ptr<TrajectoryModel> model = trajectory_model(o);
   TerminalProgress progress;
-  const RockfallResult result = run_rockfall(ground, sources, model, o.settings, &progress);
+  const RockfallResult result = run_rockfall(ground, sources, *model, o.settings, &progress);
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();
@@ -187,6 +225,7 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table, bool size_gi
                         {"trajectories", result.trajectories},
                         {"stop_reasons", stops},
                         {"saved_trajectories", result.lines.size()}});
+  record.set("runout", runout_summary(result.runouts));
   record.set("notes", scene.notes);
   record.set("problems", scene.problems);
   record.add_timing("read_inputs", read_seconds);
@@ -219,7 +258,7 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
   cmd->add_option("--lithology", o->inputs.lithology, "Lithology class raster");
   cmd->add_option("--vegetation", o->inputs.vegetation, "Vegetation raster: class codes or deperdition coefficients (1/m)");
   cmd->add_option("--materials", o->inputs.materials, "Materials table (TOML); default: built-in");
-  cmd->add_option("--scenario", o->scenario, "Scenario TOML: [run], [rock], [stochastic], [fast_bounce] (see talus params)");
+  cmd->add_option("--scenario", o->scenario, "Scenario TOML: [run], [rock], [stochastic], [fast_bounce], [full] (see talus params)");
   auto* mode = cmd->add_option("--mode", o->mode, "Trajectory model: fast or full")->default_val("fast");
   auto* runs = cmd->add_option("--runs", o->settings.runs_per_source, "Trajectories per release cell or point")->default_val(10);
   auto* shape = cmd->add_option("--block-shape", o->block_shape, "sphere, ellipsoid or box")->default_val("sphere");
@@ -229,11 +268,15 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
   cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
   cmd->callback([o, table, &action, mode, runs, shape, size, density, seed] {
-    const bool flags[] = {size->count() > 0, shape->count() > 0, density->count() > 0,
-                          runs->count() > 0, seed->count() > 0, mode->count() > 0};
-    action = [o, table, flags] {
-      return run_rockfall_command(*o, *table, flags[0], flags[1], flags[2], flags[3], flags[4], flags[5]);
-    };
+    const std::pair<CLI::Option*, const char*> flags[] = {{mode, "run.mode"},    {runs, "run.runs"},
+                                                          {seed, "run.seed"},    {shape, "rock.shape"},
+                                                          {size, "rock.size"},   {density, "rock.density"}};
+    for (const auto& [option, key] : flags) {
+      if (option->count() == 0) continue;
+      const std::string name(key);
+      table->pin(name.substr(0, name.find('.')), name.substr(name.find('.') + 1));
+    }
+    action = [o, table] { return run_rockfall_command(*o, *table); };
   });
 }
 

@@ -109,16 +109,6 @@ TEST_F(SampleRockfall, AnotherSeedGivesDifferentLayersWithConsistentStatistics) 
   EXPECT_NEAR(deposits_b / std::max(deposits_a, 1.0), 1.0, 0.10);
 }
 
-TEST(RockfallUsage, RefusesFullModeUntilItExists) {
-  const auto work = test::fresh_folder("rockfall_full_mode");
-  auto arguments = sample_arguments(work / "out", "1", "1");
-  arguments.insert(arguments.end(), {"--mode", "full"});
-  const auto result = test::run_talus(arguments, work);
-  EXPECT_EQ(result.exit_code, 2);
-  EXPECT_NE(result.err.find("--mode full"), std::string::npos) << result.err;
-  EXPECT_TRUE(fs::is_empty(work));
-}
-
 TEST(RockfallUsage, BadReleaseWritesNothing) {
   const auto work = test::fresh_folder("rockfall_bad_release");
   auto arguments = sample_arguments(work / "out", "1", "1");

@@ -1,0 +1,206 @@
+// The rock against the piston carpet (paper 3.3, steps 1-4): implicit-function test of each
+// piston top, bisection along the piston axis to the rock's surface, the stress-cycle response
+// along the deformed ground's normal, and Coulomb and vegetation friction.
+#include "talus/rockfall/piston_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+namespace talus {
+namespace {
+
+// Paper 3.3, step 3 for a piston the rock no longer presses: it rises back to its footprint,
+// where its pressure is zero and its state keeps the footprint (stress_cycle.hpp).
+void release(Piston& piston, double footprint, std::vector<PistonChange>& journal) {
+  if (!(piston.state.compression > footprint)) return;
+  journal.push_back({piston.i, piston.j, piston.state});
+  press(piston.cycle, piston.state, footprint);
+}
+
+bool holds(const CarpetWindow& window, std::int64_t i, std::int64_t j) {
+  return i >= window.i_begin && i < window.i_end && j >= window.j_begin && j < window.j_end;
+}
+
+}  // namespace
+
+Eigen::Vector3d NormalResponse::centroid() const {
+  Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+  double sum = 0.0;
+  for (const PistonTouch& touch : touches) {
+    weighted += touch.load * touch.arm;
+    sum += touch.load;
+  }
+  return sum > 0.0 ? Eigen::Vector3d(weighted / sum) : Eigen::Vector3d::Zero();
+}
+
+void PistonRange::gather(PistonCarpet& carpet, const CarpetWindow& range) {
+  window = range;
+  pistons.clear();
+  for (std::int64_t j = range.j_begin; j < range.j_end; ++j) {
+    for (std::int64_t i = range.i_begin; i < range.i_end; ++i) {
+      Piston& piston = carpet.at(i, j);
+      if (piston.valid) pistons.push_back(&piston);
+    }
+  }
+}
+
+// Paper fig. 2: the slope of the branch the piston is on (Pa/m). On the loading curve its
+// compression is its largest; k1 below the yield pressure, k2 above; k3 below d_max.
+double active_slope(const StressCycle& cycle, const PistonState& state) {
+  if (state.compression < state.max_compression) return cycle.unloading_slope;
+  return cycle.elastic_slope * state.compression <= cycle.yield_pressure ? cycle.elastic_slope : cycle.plastic_slope;
+}
+
+// Paper 3.3, steps 1-3. A piston whose top t(d) = rest_top - d axis, at its footprint d_res, lies
+// inside the rock is pushed to the compression d where t(d) is on the rock's surface: bisection
+// on the rock's function f over [d_res, d_exit], d_exit where t(d) leaves the rock's bounding
+// sphere (below the rock, so outside it). Its pressure p acts on its cross-section
+// A along n = -g, g the rock's outward unit normal at t(d); the force p A n / |g . axis| is
+// minus the gradient of the piston's energy with respect to the rock's motion, because moving
+// the rock by dx changes d by g . dx / |g . axis| (docs/rockfall-full.md, section 3).
+void press_carpet(PistonCarpet& carpet, const PistonRange& range, const RigidRock& rock,
+                  const Eigen::Vector3d& centre, const Eigen::Matrix3d& rotation,
+                  const PistonContactParameters& parameters, const std::vector<PistonTouch>& previous,
+                  NormalResponse& response, std::vector<PistonChange>& journal) {
+  response.force.setZero();
+  response.torque.setZero();
+  response.stiffness = 0.0;
+  response.rotational_stiffness = 0.0;
+  response.elastic_energy = 0.0;
+  response.dissipated = 0.0;
+  response.touches.clear();
+  response.near.clear();
+
+  for (const PistonTouch& touch : previous) {
+    if (holds(range.window, touch.i, touch.j) || !holds(carpet.window(), touch.i, touch.j)) continue;
+    Piston& piston = carpet.at(touch.i, touch.j);
+    release(piston, piston.cycle.residual_compression(piston.state.max_compression), journal);
+  }
+
+  const Eigen::Matrix3d to_body = rotation.transpose();
+  const double radius = rock.bounding_radius();
+  const double radius_squared = radius * radius;
+  for (Piston* candidate : range.pistons) {
+    Piston& piston = *candidate;
+    const double footprint = piston.cycle.residual_compression(piston.state.max_compression);
+    const Eigen::Vector3d offset = piston.rest_top - footprint * piston.axis - centre;
+    const double distance_squared = offset.squaredNorm();
+    if (distance_squared >= radius_squared) {
+      release(piston, footprint, journal);
+      response.near.push_back({offset, piston.axis, std::sqrt(distance_squared) - radius});
+      continue;
+    }
+    const Eigen::Vector3d top_body = to_body * offset;
+    const double value = rock.value(top_body);
+    if (!(value < 0.0)) {
+      release(piston, footprint, journal);
+      response.near.push_back({offset, piston.axis, value * rock.inner_radius()});
+      continue;
+    }
+    const Eigen::Vector3d axis_body = to_body * piston.axis;
+    // Where the axis leaves the bounding sphere: below the rock, and much closer than 2r.
+    const double along = top_body.dot(axis_body);
+    const double exit = along + std::sqrt(along * along + radius_squared - top_body.squaredNorm());
+    double inside = 0.0;
+    double outside = exit + parameters.bisection_tolerance;
+    for (int k = 0; k < parameters.bisection_iterations && outside - inside > parameters.bisection_tolerance; ++k) {
+      const double middle = 0.5 * (inside + outside);
+      if (rock.value(top_body - middle * axis_body) < 0.0) {
+        inside = middle;
+      } else {
+        outside = middle;
+      }
+    }
+    const double depth = 0.5 * (inside + outside);
+    journal.push_back({piston.i, piston.j, piston.state});
+    const double dissipated_before = dissipated_energy(piston.cycle, piston.state);
+    const double p = press(piston.cycle, piston.state, footprint + depth);
+    response.dissipated += (dissipated_energy(piston.cycle, piston.state) - dissipated_before) * piston.area;
+    if (!(p > 0.0)) continue;
+
+    Eigen::Vector3d outward = rotation * rock.gradient(top_body - depth * axis_body);
+    const double outward_norm = outward.norm();
+    outward = outward_norm > 0.0 ? Eigen::Vector3d(outward / outward_norm) : Eigen::Vector3d(-piston.axis);
+    const double cosine = std::max(std::abs(outward.dot(piston.axis)), parameters.grazing_cosine);
+    PistonTouch touch;
+    touch.i = piston.i;
+    touch.j = piston.j;
+    touch.arm = offset - depth * piston.axis;
+    touch.normal = -outward;
+    touch.load = p * piston.area / cosine;
+    touch.friction = piston.friction;
+    touch.vegetation_deperdition = piston.vegetation_deperdition;
+    const Eigen::Vector3d force = touch.load * touch.normal;
+    response.force += force;
+    response.torque += touch.arm.cross(force);
+    const double stiffness = active_slope(piston.cycle, piston.state) * piston.area / (cosine * cosine);
+    response.stiffness += stiffness;
+    response.rotational_stiffness += stiffness * touch.arm.cross(touch.normal).squaredNorm();
+    response.elastic_energy += stored_energy(piston.cycle, piston.state) * piston.area;
+    response.touches.push_back(touch);
+  }
+}
+
+// Paper 3.3, step 4, one linearly implicit kick. With u = (v, w) after the kick, G_i u the slip at
+// touch i (G_i = P_i [1, -[r_i]x], P_i the projection across its normal) and M = diag(m 1, I_w),
+// the kick M u = M u* - dt sum c_i G_i^T G_i u is solved for u; the impulse is M (u - u*).
+FrictionImpulse friction_impulse(const std::vector<PistonTouch>& touches, const Eigen::Vector3d& velocity,
+                                 const Eigen::Vector3d& spin, double mass, const Eigen::Matrix3d& world_inertia,
+                                 double slip_speed, double rolling_resistance, double duration) {
+  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  Matrix6d friction = Matrix6d::Zero();  // sum of c_i G_i^T G_i (N s/m, N s, N m s)
+  bool sliding = false;
+  for (const PistonTouch& touch : touches) {
+    const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - touch.normal * touch.normal.transpose();
+    Eigen::Matrix3d arm_cross;
+    arm_cross << 0.0, -touch.arm.z(), touch.arm.y(), touch.arm.z(), 0.0, -touch.arm.x(), -touch.arm.y(),
+        touch.arm.x(), 0.0;
+    Eigen::Matrix<double, 3, 6> slip_map;
+    slip_map << across, -across * arm_cross;
+    const double slip = (slip_map.leftCols<3>() * velocity + slip_map.rightCols<3>() * spin).norm();
+    const double coefficient = touch.friction * touch.load / std::max(slip_speed, slip);
+    if (coefficient > 0.0) {
+      friction.noalias() += coefficient * slip_map.transpose() * slip_map;
+      sliding = true;
+    }
+    // Rolling resistance: the "slip" is the rolling speed l |w_t| of the centre over the contact.
+    const double lever = std::abs(touch.arm.dot(touch.normal));
+    const Eigen::Matrix3d rolling_map = lever * across;
+    const double rolling = (rolling_map * spin).norm();
+    const double rolling_coefficient = rolling_resistance * touch.friction * touch.load / std::max(slip_speed, rolling);
+    if (rolling_coefficient > 0.0) {
+      friction.bottomRightCorner<3, 3>().noalias() += rolling_coefficient * rolling_map.transpose() * rolling_map;
+      sliding = true;
+    }
+  }
+  FrictionImpulse impulse;
+  if (!sliding) return impulse;
+  Matrix6d inertia = Matrix6d::Zero();
+  inertia.topLeftCorner<3, 3>() = mass * Eigen::Matrix3d::Identity();
+  inertia.bottomRightCorner<3, 3>() = world_inertia;
+  Vector6d before;
+  before << velocity, spin;
+  const Vector6d momentum = inertia * before;
+  const Vector6d after = (inertia + duration * friction).ldlt().solve(momentum);
+  const Vector6d change = inertia * after - momentum;
+  impulse.linear = change.head<3>();
+  impulse.angular = change.tail<3>();
+  return impulse;
+}
+
+Eigen::Vector3d vegetation_force(const std::vector<PistonTouch>& touches, const Eigen::Vector3d& velocity,
+                                 double mass) {
+  double total_load = 0.0;
+  double weighted = 0.0;  // sum of c N (N/m)
+  for (const PistonTouch& touch : touches) {
+    total_load += touch.load;
+    weighted += touch.vegetation_deperdition * touch.load;
+  }
+  if (!(total_load > 0.0) || !(weighted > 0.0)) return Eigen::Vector3d::Zero();
+  return -(weighted / total_load) * mass * velocity.norm() * velocity;
+}
+
+}  // namespace talus

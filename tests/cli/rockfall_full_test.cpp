@@ -1,0 +1,89 @@
+// `talus rockfall --mode full` end to end on the sample scene (issue 4, "Done when"): the
+// piston-carpet model writes every layer of the contract (../shared/tools/check_layers.py),
+// records its mode and parameters in run.json, books energy lost to ground deformation, and
+// gives the same layers at 1 and 2 threads.
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "run_talus.hpp"
+#include "test_paths.hpp"
+
+namespace talus {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> full_mode_arguments(const fs::path& out, const std::string& threads) {
+  const auto sample = test::source_dir() / "sample_dem";
+  return {"rockfall", "--mode", "full", "--dem", (sample / "dem.tif").string(), "--lithology",
+          (sample / "lithology.tif").string(), "--vegetation", (sample / "vegetation.tif").string(), "--release",
+          (sample / "rockfall_release.gpkg").string(), "--out", out.string(), "--runs", "1", "--threads", threads};
+}
+
+std::vector<float> read_layer(const fs::path& path) {
+  GDALAllRegister();
+  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  EXPECT_TRUE(dataset) << path;
+  if (!dataset) return {};
+  const int w = dataset->GetRasterXSize(), h = dataset->GetRasterYSize();
+  std::vector<float> values(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  EXPECT_EQ(dataset->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float32, 0, 0), CE_None);
+  return values;
+}
+
+class SampleFullMode : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = test::fresh_folder("rockfall_full_sample");
+    for (const auto& [name, threads] : {std::pair{"t1", "1"}, {"t2", "2"}}) {
+      results_[name] = test::run_talus(full_mode_arguments(root_ / name, threads), root_);
+    }
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+  static fs::path root_;
+  static std::map<std::string, test::ProgramResult> results_;
+};
+fs::path SampleFullMode::root_;
+std::map<std::string, test::ProgramResult> SampleFullMode::results_;
+
+TEST_F(SampleFullMode, WritesEveryLayerOfTheContract) {
+  for (const auto& [name, result] : results_) ASSERT_EQ(result.exit_code, 0) << name << ": " << result.err;
+  const auto dem = test::source_dir() / "sample_dem/dem.tif";
+  const auto checker = test::shared_dir() / "tools/check_layers.py";
+  const std::string command =
+      "/usr/bin/python3 " + checker.string() + " rockfall " + (root_ / "t2").string() + " " + dem.string();
+  EXPECT_EQ(std::system(command.c_str()), 0);
+}
+
+TEST_F(SampleFullMode, RecordsTheModeAndBooksDeformationLosses) {
+  ASSERT_EQ(results_["t2"].exit_code, 0) << results_["t2"].err;
+  std::ifstream file(root_ / "t2" / "run.json");
+  const nlohmann::json record = nlohmann::json::parse(file);
+  EXPECT_EQ(record["parameters"]["run"]["mode"], "full");
+  EXPECT_TRUE(record["parameters"].contains("full"));
+  EXPECT_GT(record["runout"]["median_m"].get<double>(), 10.0);
+  // Impacts on the piston carpet dissipate energy in the stress cycles: the layer is not empty.
+  double deformation = 0;
+  for (const float value : read_layer(root_ / "t2" / "energy_loss_deformation.tif")) deformation += value > 0 ? value : 0;
+  EXPECT_GT(deformation, 0.0);
+}
+
+TEST_F(SampleFullMode, SameLayersAtOneAndTwoThreads) {
+  for (const char* layer : {"passages", "energy_max", "energy_loss_deformation", "jump_height_p95"}) {
+    const auto one = read_layer(root_ / "t1" / (std::string(layer) + ".tif"));
+    const auto two = read_layer(root_ / "t2" / (std::string(layer) + ".tif"));
+    ASSERT_EQ(one.size(), two.size());
+    EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)), 0) << layer << " differs";
+  }
+}
+
+}  // namespace
+}  // namespace talus
