@@ -2,6 +2,7 @@
 // nodes (cell centres) and interpolated bilinearly inside each square of four nodes.
 #include "talus/ground/ground_model.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -72,8 +73,10 @@ GroundModel::GroundModel(Grid<double> elevation, Grid<GroundMaterial> node_mater
   const GridSpec& grid = spec();
   for (int row = 0; row < grid.height; ++row) {
     for (int col = 0; col < grid.width; ++col) {
-      const int col1 = grid.width > 1 ? col + 1 : col;
-      const int row1 = grid.height > 1 ? row + 1 : row;
+      // The last row and column are never a square's lower-left node (lower_node): their flags are
+      // those of a degenerate square and are never read.
+      const int col1 = std::min(col + 1, grid.width - 1);
+      const int row1 = std::min(row + 1, grid.height - 1);
       const bool valid = elevation_.is_valid(col, row) && elevation_.is_valid(col1, row) &&
                          elevation_.is_valid(col, row1) && elevation_.is_valid(col1, row1);
       const GroundMaterial& m = materials_.at(col, row);
