@@ -322,13 +322,7 @@ class FastBounceRun {
     unsampled_ = true;
   }
 
-  StopReason outside(const Eigen::Vector3d& at) const {
-    const GridSpec& spec = ground_.model().spec();
-    const double col = spec.col_of(at.x());
-    const double row = spec.row_of(at.y());
-    const bool in_extent = col >= 0.0 && col <= spec.width - 1.0 && row >= 0.0 && row <= spec.height - 1.0;
-    return in_extent ? StopReason::nodata_area : StopReason::left_dem;
-  }
+  StopReason outside(const Eigen::Vector3d& at) const { return reason_for_leaving(ground_.model().spec(), at); }
 
   TrajectorySample sample() const {
     return {t_, p_, v_, 0.5 * mass_ * v_.squaredNorm(), p_.z() - ground_z_};

@@ -1,4 +1,5 @@
-// Names of the reasons a trajectory stops, as written into trajectories.gpkg and run.json.
+// Names of the reasons a trajectory stops, as written into trajectories.gpkg and run.json, and
+// which of the two ways out of the valid ground a rock took.
 #include "talus/rockfall/trajectory_observer.hpp"
 
 namespace talus {
@@ -11,6 +12,13 @@ const char* to_string(StopReason reason) {
     case StopReason::nodata_area: return "nodata_area";
   }
   return "unknown";
+}
+
+StopReason reason_for_leaving(const GridSpec& spec, const Eigen::Vector3d& at) {
+  const double col = spec.col_of(at.x());
+  const double row = spec.row_of(at.y());
+  const bool in_extent = col >= 0.0 && col <= spec.width - 1.0 && row >= 0.0 && row <= spec.height - 1.0;
+  return in_extent ? StopReason::nodata_area : StopReason::left_dem;
 }
 
 }  // namespace talus

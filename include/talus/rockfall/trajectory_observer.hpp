@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include "talus/core/grid_spec.hpp"
+
 namespace talus {
 
 enum class StopReason {
@@ -15,6 +17,10 @@ enum class StopReason {
   nodata_area,    // the rock entered cells without elevation
 };
 const char* to_string(StopReason reason);
+
+// Why a rock at `at` (m), where the ground is not defined, stops: left_dem outside the DEM's node
+// lattice, nodata_area inside it (cells without elevation).
+StopReason reason_for_leaving(const GridSpec& spec, const Eigen::Vector3d& at);
 
 struct TrajectorySample {
   double time = 0;                                      // s since release
