@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "commands.hpp"
+#include "number_list.hpp"
 #include "terminal_progress.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/materials_file.hpp"
@@ -44,30 +45,12 @@ std::string number(double value) {
   return text.str();
 }
 
-// "a,b,c" -> its numbers; throws InputError naming the option when a part is not a number.
-std::vector<double> parse_list(const std::string& option, const std::string& text) {
-  std::vector<double> values;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, ',')) {
-    try {
-      std::size_t used = 0;
-      values.push_back(std::stod(part, &used));
-      if (used != part.size()) throw std::invalid_argument(part);
-    } catch (const std::exception&) {
-      throw InputError(option + " " + text + ": '" + part + "' is not a number");
-    }
-  }
-  if (values.empty()) throw InputError(option + " " + text + ": give at least one value");
-  return values;
-}
-
 // --classes: lithology codes of the table, each once; empty text means every class.
 std::vector<int> parse_classes(const std::string& text, const MaterialsTable& table, const std::string& table_name) {
   std::vector<int> codes;
   if (text.empty()) return codes;
   std::set<int> seen;
-  for (double value : parse_list("--classes", text)) {
+  for (double value : parse_number_list("--classes", text)) {
     if (value != std::floor(value) || std::abs(value) > 1e9) {
       throw InputError("--classes " + text + ": class codes are integers");
     }
@@ -197,7 +180,7 @@ int run_calibrate_command(const CalibrateOptions& o) {
   const std::string table_name = o.materials.empty() ? "the built-in materials table" : o.materials.string();
   const std::vector<int> codes = parse_classes(o.classes, table, table_name);
   CalibrationSettings settings;
-  settings.scene.slope_angles = parse_list("--slopes", o.slopes);
+  settings.scene.slope_angles = parse_number_list("--slopes", o.slopes);
   for (double angle : settings.scene.slope_angles) {
     if (!(angle >= 10.0 && angle <= 80.0)) throw InputError("--slopes " + o.slopes + ": angles must lie between 10 and 80 deg");
   }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "number_list.hpp"
 #include "parameter_table.hpp"
 #include "terminal_progress.hpp"
 #include "talus/core/errors.hpp"
@@ -44,18 +45,7 @@ BlockShape parse_shape(const std::string& text) {
 
 // "D" (a sphere's diameter, or all three axes) or "A,B,C" (m).
 Eigen::Vector3d parse_size(const std::string& text) {
-  std::vector<double> values;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, ',')) {
-    try {
-      std::size_t used = 0;
-      values.push_back(std::stod(part, &used));
-      if (used != part.size()) throw std::invalid_argument(part);
-    } catch (const std::exception&) {
-      throw InputError("--block-size " + text + ": not a number of metres");
-    }
-  }
+  std::vector<double> values = parse_number_list("--block-size", text);
   if (values.size() == 1) values.assign(3, values[0]);
   if (values.size() != 3) throw InputError("--block-size " + text + ": give D or A,B,C in metres");
   for (double v : values) {
