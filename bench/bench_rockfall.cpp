@@ -2,6 +2,7 @@
 // "Benchmark"). Arguments: threads. Reported counter: trajectories/s.
 #include <benchmark/benchmark.h>
 
+#include "sample_scene_inputs.hpp"
 #include "talus/gis/scene.hpp"
 #include "talus/rockfall/fast_bounce.hpp"
 #include "talus/rockfall/monte_carlo.hpp"
@@ -16,12 +17,7 @@ struct SampleScene {
 
 const SampleScene& sample_scene() {
   static const SampleScene sample = [] {
-    talus::gis::SceneInputs inputs;
-    const std::filesystem::path dir = TALUS_SAMPLE_DIR;
-    inputs.dem = dir / "dem.tif";
-    inputs.lithology = dir / "lithology.tif";
-    inputs.vegetation = dir / "vegetation.tif";
-    inputs.release = dir / "rockfall_release.gpkg";
+    talus::gis::SceneInputs inputs = sample_scene_inputs();
     talus::gis::Scene scene = talus::gis::load_scene(inputs);
     talus::GroundModel ground = scene.ground_model();
     auto sources = talus::release_sources(*scene.release);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "sample_scene_inputs.hpp"
 #include "talus/gis/scene.hpp"
 #include "talus/ground/perlin_noise.hpp"
 #include "talus/ground/perturbed_ground.hpp"
@@ -40,12 +41,7 @@ struct SampleScene {
 // The sample scene with the built-in materials, read once (DESIGN.md section 1: gis -> scene).
 const SampleScene& sample_scene() {
   static const SampleScene sample = [] {
-    talus::gis::SceneInputs inputs;
-    const std::filesystem::path dir = TALUS_SAMPLE_DIR;
-    inputs.dem = dir / "dem.tif";
-    inputs.lithology = dir / "lithology.tif";
-    inputs.vegetation = dir / "vegetation.tif";
-    inputs.release = dir / "rockfall_release.gpkg";
+    talus::gis::SceneInputs inputs = sample_scene_inputs();
     talus::gis::Scene scene = talus::gis::load_scene(inputs);
     talus::GroundModel ground = scene.ground_model();
     const std::vector<talus::ReleaseSource> all = talus::release_sources(*scene.release);

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "talus/core/errors.hpp"
+#include "sample_scene_inputs.hpp"
 #include "talus/gis/scene.hpp"
 #include "talus/rockfall/fast_bounce.hpp"
 #include "talus/rockfall/full_model.hpp"
@@ -107,12 +108,7 @@ struct SampleScene {
 
 // Reads the sample scene through the gis layer, as `talus rockfall` does (DESIGN.md section 1).
 SampleScene load_sample(const std::string& materials, std::size_t stride) {
-  talus::gis::SceneInputs inputs;
-  const std::filesystem::path dir = TALUS_SAMPLE_DIR;
-  inputs.dem = dir / "dem.tif";
-  inputs.lithology = dir / "lithology.tif";
-  inputs.vegetation = dir / "vegetation.tif";
-  inputs.release = dir / "rockfall_release.gpkg";
+  talus::gis::SceneInputs inputs = sample_scene_inputs();
   inputs.materials = materials;
   const talus::gis::Scene scene = talus::gis::load_scene(inputs);
   const std::vector<talus::ReleaseSource> all = talus::release_sources(*scene.release);
