@@ -4,8 +4,6 @@
 // gives the same layers at 1 and 2 threads.
 #include <gtest/gtest.h>
 
-#include <gdal_priv.h>
-
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -13,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "raster_fixtures.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -26,17 +25,6 @@ std::vector<std::string> full_mode_arguments(const fs::path& out, const std::str
   return {"rockfall", "--mode", "full", "--dem", (sample / "dem.tif").string(), "--lithology",
           (sample / "lithology.tif").string(), "--vegetation", (sample / "vegetation.tif").string(), "--release",
           (sample / "rockfall_release.gpkg").string(), "--out", out.string(), "--runs", "1", "--threads", threads};
-}
-
-std::vector<float> read_layer(const fs::path& path) {
-  GDALAllRegister();
-  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  EXPECT_TRUE(dataset) << path;
-  if (!dataset) return {};
-  const int w = dataset->GetRasterXSize(), h = dataset->GetRasterYSize();
-  std::vector<float> values(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  EXPECT_EQ(dataset->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float32, 0, 0), CE_None);
-  return values;
 }
 
 class SampleFullMode : public ::testing::Test {
@@ -72,14 +60,14 @@ TEST_F(SampleFullMode, RecordsTheModeAndBooksDeformationLosses) {
   EXPECT_GT(record["runout"]["median_m"].get<double>(), 10.0);
   // Impacts on the piston carpet dissipate energy in the stress cycles: the layer is not empty.
   double deformation = 0;
-  for (const float value : read_layer(root_ / "t2" / "energy_loss_deformation.tif")) deformation += value > 0 ? value : 0;
+  for (const float value : test::read_band(root_ / "t2" / "energy_loss_deformation.tif")) deformation += value > 0 ? value : 0;
   EXPECT_GT(deformation, 0.0);
 }
 
 TEST_F(SampleFullMode, SameLayersAtOneAndTwoThreads) {
   for (const char* layer : {"passages", "energy_max", "energy_loss_deformation", "jump_height_p95"}) {
-    const auto one = read_layer(root_ / "t1" / (std::string(layer) + ".tif"));
-    const auto two = read_layer(root_ / "t2" / (std::string(layer) + ".tif"));
+    const auto one = test::read_band(root_ / "t1" / (std::string(layer) + ".tif"));
+    const auto two = test::read_band(root_ / "t2" / (std::string(layer) + ".tif"));
     ASSERT_EQ(one.size(), two.size());
     EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)), 0) << layer << " differs";
   }

@@ -4,13 +4,12 @@
 // statistics.
 #include <gtest/gtest.h>
 
-#include <gdal_priv.h>
-
 #include <algorithm>
 #include <cstring>
 #include <map>
 #include <tuple>
 
+#include "raster_fixtures.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -27,17 +26,6 @@ std::vector<std::string> sample_arguments(const fs::path& out, const std::string
   return {"rockfall", "--dem", (sample / "dem.tif").string(), "--lithology", (sample / "lithology.tif").string(),
           "--vegetation", (sample / "vegetation.tif").string(), "--release", (sample / "rockfall_release.gpkg").string(),
           "--out", out.string(), "--runs", "4", "--seed", seed, "--threads", threads};
-}
-
-std::vector<float> read_layer(const fs::path& path) {
-  GDALAllRegister();
-  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  EXPECT_TRUE(dataset) << path;
-  if (!dataset) return {};
-  const int w = dataset->GetRasterXSize(), h = dataset->GetRasterYSize();
-  std::vector<float> values(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  EXPECT_EQ(dataset->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float32, 0, 0), CE_None);
-  return values;
 }
 
 int run_python(const std::string& arguments) { return std::system(("/usr/bin/python3 " + arguments).c_str()); }
@@ -81,16 +69,16 @@ TEST_F(SampleRockfall, LayersOpenStyledInQgis) {
 
 TEST_F(SampleRockfall, SameSeedGivesIdenticalLayersAtOneAndTwoThreads) {
   for (const char* layer : kLayers) {
-    const auto one = read_layer(root_ / "seed1_t1" / (std::string(layer) + ".tif"));
-    const auto two = read_layer(root_ / "seed1_t2" / (std::string(layer) + ".tif"));
+    const auto one = test::read_band(root_ / "seed1_t1" / (std::string(layer) + ".tif"));
+    const auto two = test::read_band(root_ / "seed1_t2" / (std::string(layer) + ".tif"));
     ASSERT_EQ(one.size(), two.size());
     EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)), 0) << layer << " differs";
   }
 }
 
 TEST_F(SampleRockfall, AnotherSeedGivesDifferentLayersWithConsistentStatistics) {
-  const auto a = read_layer(root_ / "seed1_t2" / "passages.tif");
-  const auto b = read_layer(root_ / "seed2_t2" / "passages.tif");
+  const auto a = test::read_band(root_ / "seed1_t2" / "passages.tif");
+  const auto b = test::read_band(root_ / "seed2_t2" / "passages.tif");
   ASSERT_EQ(a.size(), b.size());
   EXPECT_NE(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
   double reached_a = 0, reached_b = 0, deposits_a = 0, deposits_b = 0;
@@ -98,8 +86,8 @@ TEST_F(SampleRockfall, AnotherSeedGivesDifferentLayersWithConsistentStatistics) 
     reached_a += a[i] > 0 ? 1 : 0;
     reached_b += b[i] > 0 ? 1 : 0;
   }
-  const auto da = read_layer(root_ / "seed1_t2" / "deposits.tif");
-  const auto db = read_layer(root_ / "seed2_t2" / "deposits.tif");
+  const auto da = test::read_band(root_ / "seed1_t2" / "deposits.tif");
+  const auto db = test::read_band(root_ / "seed2_t2" / "deposits.tif");
   for (std::size_t i = 0; i < da.size(); ++i) {
     deposits_a += da[i] > 0 ? da[i] : 0;
     deposits_b += db[i] > 0 ? db[i] : 0;

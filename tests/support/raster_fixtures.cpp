@@ -7,6 +7,18 @@
 
 namespace talus::test {
 
+std::vector<float> read_band(const std::filesystem::path& path) {
+  GDALAllRegister();
+  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!dataset) throw std::runtime_error("cannot open " + path.string());
+  const int w = dataset->GetRasterXSize(), h = dataset->GetRasterYSize();
+  std::vector<float> values(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  if (dataset->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float32, 0, 0) != CE_None) {
+    throw std::runtime_error("cannot read " + path.string());
+  }
+  return values;
+}
+
 void write_raster(const std::filesystem::path& path, const RasterFixture& fixture) {
   GDALAllRegister();
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");

@@ -26,6 +26,9 @@ struct VectorFeature {
   double depth = 0;      // written when the layer has a depth field
 };
 
+// Band 1 of a raster as Float32, row by row; throws std::runtime_error when it cannot be read.
+std::vector<float> read_band(const std::filesystem::path& path);
+
 // Writes a GeoPackage with one layer of the given features.
 void write_vector(const std::filesystem::path& path, const std::string& crs, const std::vector<VectorFeature>& features,
                   bool with_depth_field);
