@@ -87,10 +87,17 @@ GroundModel::GroundModel(Grid<double> elevation, Grid<GroundMaterial> node_mater
   }
 }
 
+// Continuous node coordinates of (x, y): node (col, row) at integer values (GridSpec::col_of and
+// row_of, with the divisions done once in the constructor).
+Eigen::Vector2d GroundModel::node_coordinates(double x, double y) const {
+  const GridSpec& grid = spec();
+  return {(x - grid.geotransform[0]) * inverse_dx_ - 0.5, (y - grid.geotransform[3]) * inverse_dy_ - 0.5};
+}
+
 NodeSquare GroundModel::locate(double x, double y) const {
   const GridSpec& grid = spec();
-  const double col = (x - grid.geotransform[0]) * inverse_dx_ - 0.5;
-  const double row = (y - grid.geotransform[3]) * inverse_dy_ - 0.5;
+  const Eigen::Vector2d node = node_coordinates(x, y);
+  const double col = node.x(), row = node.y();
   const int col0 = lower_node(col, grid.width);
   const int row0 = lower_node(row, grid.height);
   const std::size_t step_x = grid.width > 1 ? 1 : 0;
@@ -107,8 +114,8 @@ NodeSquare GroundModel::locate(double x, double y) const {
 
 bool GroundModel::contains(double x, double y) const {
   const GridSpec& grid = spec();
-  const double col = (x - grid.geotransform[0]) * inverse_dx_ - 0.5;
-  const double row = (y - grid.geotransform[3]) * inverse_dy_ - 0.5;
+  const Eigen::Vector2d node = node_coordinates(x, y);
+  const double col = node.x(), row = node.y();
   // Written so that NaN coordinates fall outside.
   if (!(col >= 0.0 && col <= grid.width - 1.0 && row >= 0.0 && row <= grid.height - 1.0)) return false;
   return (square_flags_.at(lower_node(col, grid.width), lower_node(row, grid.height)) & kValidSquare) != 0;

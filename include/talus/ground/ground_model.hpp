@@ -63,6 +63,7 @@ class GroundModel {
   double material_field(double GroundMaterial::*field, const NodeSquare& square) const;
 
  private:
+  Eigen::Vector2d node_coordinates(double x, double y) const;
   Grid<double> elevation_;
   Grid<GroundMaterial> materials_;
   // Per node square, by its lower-left node: kValidSquare when its four nodes have elevations,
