@@ -33,6 +33,7 @@ struct RockfallOptions {
   RockfallSettings settings;
   FastBounceParameters fast;
   FullModelParameters full;
+  double fracture_strength = FullModelParameters{}.fracture_strength / 1000.0;  // kN, into full.fracture_strength (N)
   std::vector<std::string> command_line;
 };
 
@@ -63,6 +64,11 @@ ParameterTable parameter_table(RockfallOptions& o) {
   table.add("rock", "shape", "", "sphere, ellipsoid or box", &o.block_shape);
   table.add("rock", "size", "m", "diameter, or axes A,B,C", &o.block_size);
   table.add("rock", "density", "kg/m3", "rock density", &o.settings.rock.density);
+  table.add("rock", "fracture_parts", "",
+            "pre-fractured block (full mode): 1 intact, 2 halves across the longest axis, 4 also across the second, 8 octants",
+            &o.full.fracture_parts);
+  table.add("rock", "fracture_strength", "kN", "force beyond which a bond between two parts of the block breaks",
+            &o.fracture_strength);
   auto& s = o.settings.stochastic;
   table.add("stochastic", "release_jitter", "-", "release point uniform over this fraction of its cell", &s.release_jitter);
   table.add("stochastic", "release_height", "m", "start height of the rock's lowest point above the ground", &s.release_height);
@@ -105,7 +111,9 @@ ParameterTable parameter_table(RockfallOptions& o) {
   table.add("full", "approach_fraction", "-", "per step, a piston top may be approached by this fraction of the spacing beyond its gap",
             &m.approach_fraction);
   table.add("full", "fresh_contact_pistons", "", "a coming contact's stiffness counts this many pistons at k3", &m.fresh_contact_pistons);
-  table.add("full", "grazing_cosine", "-", "floor of |normal . piston axis| in the piston force", &m.grazing_cosine);
+  table.add("full", "grazing_cosine", "-",
+            "floor of |normal . piston axis| in the piston force; a fragment's piston compresses at most its depth in the rock / this",
+            &m.grazing_cosine);
   table.add("full", "guard_tolerance", "-", "energy growth per step, relative to kinetic + elastic + m g spacing, that counts as blow-up",
             &m.guard_tolerance);
   table.add("full", "carpet_margin", "m", "extra width of the piston carpet around the rock's footprint", &m.carpet_margin);
@@ -170,6 +178,18 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
     throw InputError("--density " + std::to_string(o.settings.rock.density) + ": expected 500-6000 kg/m3");
   }
   if (o.settings.runs_per_source == 0) throw InputError("--runs 0: at least one run per source");
+  const int parts = o.full.fracture_parts;
+  if (parts != 1 && parts != 2 && parts != 4 && parts != 8) {
+    throw InputError("[rock] fracture_parts " + std::to_string(parts) + ": use 1 (intact), 2, 4 or 8");
+  }
+  if (parts > 1 && o.mode != "full") {
+    throw InputError("[rock] fracture_parts " + std::to_string(parts) +
+                     ": pre-fractured blocks need --mode full (fast mode moves intact rocks only)");
+  }
+  if (!(o.fracture_strength > 0.0 && std::isfinite(o.fracture_strength))) {
+    throw InputError("[rock] fracture_strength " + std::to_string(o.fracture_strength) + ": expected a force > 0 kN");
+  }
+  o.full.fracture_strength = 1000.0 * o.fracture_strength;
   if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
     throw InputError(o.out.string() + " (--out): exists and is not a folder");
   }
@@ -214,6 +234,7 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   record.set("counts", {{"sources", sources.size()},
                         {"trajectories", result.trajectories},
                         {"stop_reasons", stops},
+                        {"fragments", result.fragments},
                         {"saved_trajectories", result.lines.size()}});
   record.set("runout", runout_summary(result.runouts));
   record.set("notes", scene.notes);
@@ -231,6 +252,7 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
     std::printf("%s%s %llu", r ? ", " : "", to_string(static_cast<StopReason>(r)),
                 static_cast<unsigned long long>(result.stop_counts[r]));
   }
+  if (result.fragments > 0) std::printf("; fragments from fractures %llu", static_cast<unsigned long long>(result.fragments));
   std::printf("\nLayers written to %s (open the .tif files in QGIS: each has its style beside it)\n", o.out.c_str());
   return 0;
 }

@@ -3,18 +3,22 @@
 // drift the piston carpet (piston_carpet.hpp) is scrolled under the rock's bounding box and
 // pressed by it (piston_contact.hpp); friction and air drag take the latest velocities. Steps
 // follow the contact's stiffness, and the guard (step_guard.hpp) retries blown-up steps with
-// halved ones. Equations, choices and parameters: docs/rockfall-full.md.
+// halved ones. A pre-fractured block (fracture.hpp) checks its bonds after every step; when one
+// breaks, the run ends there and each fragment runs on from the break on a copy of the carpet,
+// one after the other. Equations, choices and parameters: docs/rockfall-full.md.
 #include "talus/rockfall/full_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <utility>
 #include <vector>
 
+#include "talus/rockfall/fracture.hpp"
 #include "talus/rockfall/piston_carpet.hpp"
 #include "talus/rockfall/piston_contact.hpp"
 #include "talus/rockfall/rigid_rock.hpp"
@@ -25,6 +29,14 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kReleaseTolerance = 1e-6;  // m: a rock released into the ground is lifted to touch it within this
+// A collapsing step (docs/rockfall-full.md, section 5), as fractions of a fresh contact's step
+// time_step_factor x 2 pi sqrt(m / K_fresh) (fresh_contact_step): a step shorter than
+// kMinStepFraction of it, or kStallSteps accepted steps in a row each shorter than
+// kStallFraction of it, throw NumericalFailure instead of running for ever. The guard's halvings
+// and the stiffest contacts keep legitimate steps above 1e-4 of it (measured: 5e-3 at least).
+constexpr double kMinStepFraction = 1e-6;
+constexpr double kStallFraction = 1e-3;
+constexpr long kStallSteps = 10000;
 
 // The pistons of the contact range as the step-size rules see them (docs/rockfall-full.md,
 // section 4): their mean axis, how high they reach along it, and how steep they are.
@@ -84,55 +96,98 @@ struct RunState {
 
 enum class Attempt { accepted, unsound, outside };
 
+// Where one FullModelRun starts: the block at its release, or a fragment at the break that made it
+// (docs/rockfall-full.md, section 11).
+struct RunStart {
+  FracturedBody block;
+  RockState rock;
+  double time = 0.0;                   // s since release
+  double spacing = 0.0;                // m: piston spacing, the released block's for all its fragments
+  std::optional<PistonCarpet> carpet;  // at a break: the block's carpet without the other fragments' loads
+  std::vector<PistonTouch> touches;    // at a break: the pistons this fragment loads
+  bool announced = false;              // a new fragment for the observer (on_fragment)
+};
+
+// How one FullModelRun ended: a stop, or a break into fragments (the first continues the run).
+struct RunEnd {
+  std::optional<StopReason> stop;
+  std::vector<RunStart> fragments;
+};
+
 class FullModelRun {
  public:
-  FullModelRun(const FullModelParameters& parameters, const PerturbedGround& ground, const Rock& rock,
-               const RigidBodyState& start, TrajectoryObserver& observer)
+  FullModelRun(const FullModelParameters& parameters, const PerturbedGround& ground, TrajectoryObserver& observer,
+               RunStart start)
       : parameters_(parameters),
         ground_(ground),
         observer_(observer),
-        body_(rock, parameters.surface_samples, parameters.mass_resolution),
-        spacing_(parameters.carpet_spacing * std::cbrt(6.0 * rock.volume() / std::numbers::pi)),
+        block_(std::move(start.block)),
+        body_(block_.body()),
+        spacing_(start.spacing),
         margin_cells_(static_cast<std::int64_t>(std::ceil(parameters.carpet_margin / spacing_))),
         contact_{parameters.grazing_cosine, 1e-9, 40},
-        carpet_(ground, spacing_) {
-    now_.rock = rock_state(body_, start.position, start.velocity, start.orientation, start.angular_velocity);
+        carpet_(start.carpet ? std::move(*start.carpet) : PistonCarpet(ground, spacing_)) {
+    from_break_ = start.carpet.has_value();
+    announced_ = start.announced;
+    now_.rock = start.rock;
+    now_.time = start.time;
+    now_.normal.touches = std::move(start.touches);
   }
 
-  StopReason run(EnergyBalance& balance) {
+  // Runs until the rock stops (then reports the stop and adds its final energies to `balance`) or
+  // breaks (then returns its fragments); adds its losses to `balance` either way.
+  RunEnd run(EnergyBalance& balance) {
     std::optional<StopReason> stop = begin();
-    while (!stop) stop = advance();
+    while (!stop && fragments_.empty()) stop = advance();
+    balance.deformation_loss += now_.deformation_loss;
+    balance.friction_loss += now_.friction_loss;
+    balance.drag_loss += now_.drag_loss;
+    if (!stop) return {std::nullopt, std::move(fragments_)};
     if (unsampled_) report_sample();
     observer_.on_stop(sample(), *stop);
-    balance.kinetic = now_.energy.kinetic;
-    balance.potential = now_.energy.potential;
-    balance.elastic = now_.energy.elastic;
-    balance.deformation_loss = now_.deformation_loss;
-    balance.friction_loss = now_.friction_loss;
-    balance.drag_loss = now_.drag_loss;
-    return *stop;
+    balance.kinetic += now_.energy.kinetic;
+    balance.potential += now_.energy.potential;
+    balance.elastic += now_.energy.elastic;
+    return {stop, {}};
   }
 
  private:
   // --- the run ------------------------------------------------------------------------------
 
   // Release: the carpet under the rock, a rock released into the ground lifted onto it, the
-  // forces on it, the first sample.
+  // forces on it, the first sample. A fragment starts where the break left it, on the block's
+  // carpet, pressing the pistons it loaded.
   std::optional<StopReason> begin() {
     const Eigen::Vector3d& x = now_.rock.position;
     if (!now_.rock.position.allFinite() || !ground_.contains(x.x(), x.y())) {
-      report_sample();
+      if (now_.rock.position.allFinite()) now_.energy = energy_of(now_);
+      report_first_sample();
       return outside(x);
     }
+    const double inherited = inherited_elastic_energy();
     const double deformation = settle_carpet();
-    now_.rock.position.z() += release_lift();
+    if (!from_break_) now_.rock.position.z() += release_lift();
     evaluate_forces();
     now_.energy = energy_of(now_);
-    now_.deformation_loss += deformation + now_.normal.dissipated;
-    report_loss(0.0, deformation + now_.normal.dissipated);
+    const double relaxed = std::max(0.0, inherited - now_.normal.elastic_energy);
+    now_.deformation_loss += deformation + now_.normal.dissipated + relaxed;
+    report_loss(0.0, deformation + now_.normal.dissipated + relaxed);
     in_contact_ = !now_.normal.touches.empty();
-    report_sample();
+    report_first_sample();
     return std::nullopt;
+  }
+
+  // A fragment at its break (docs/rockfall-full.md, section 11.3): the elastic energy (J) of the
+  // pistons it inherits, as the block left them. Pressed again by the fragment alone, a piston
+  // under the crack may hold less (its axis now leaves the rock sooner, or a cut face is near):
+  // what the pistons give up there is a deformation loss. Zero for a released rock.
+  double inherited_elastic_energy() const {
+    double energy = 0.0;
+    for (const PistonTouch& touch : now_.normal.touches) {
+      const Piston& piston = carpet_.at(touch.i, touch.j);
+      energy += stored_energy(piston.cycle, piston.state) * piston.area;
+    }
+    return energy;
   }
 
   // As fast mode puts a release's contact point below the ground onto it (docs/rockfall-fast.md,
@@ -169,6 +224,9 @@ class FullModelRun {
     const double friction_before = now_.friction_loss;
     const double deformation_before = now_.deformation_loss;
     for (int retry = 0;; ++retry) {
+      if (dt < min_step() || !(now_.time + dt > now_.time)) {
+        throw_numerical_failure(now_.time, now_.rock.position, dt, "the step collapsed below its floor");
+      }
       const Attempt attempt = step(dt);
       if (attempt == Attempt::accepted) break;
       const Eigen::Vector3d reached = now_.rock.position;
@@ -181,14 +239,67 @@ class FullModelRun {
       dt *= 0.5;
     }
     now_.last_step = dt;
+    const double fresh = fresh_contact_step();  // s, infinite without ground under the rock
+    stalled_steps_ = std::isfinite(fresh) && dt < kStallFraction * fresh ? stalled_steps_ + 1 : 0;
+    if (stalled_steps_ >= kStallSteps) {
+      throw_numerical_failure(now_.time, now_.rock.position, dt, "the step stalled far below the contact's");
+    }
     travelled_ += (now_.rock.position - saved_.rock.position).norm();
     unsampled_ = true;
     report_loss(now_.friction_loss - friction_before, now_.deformation_loss - deformation_before);
     const bool in_contact = !now_.normal.touches.empty();
     if (in_contact != in_contact_) report_sample();
     in_contact_ = in_contact;
+    if (!block_.bonds().empty() && break_up()) return std::nullopt;
     if (at_rest(dt)) return StopReason::at_rest;
     return std::nullopt;
+  }
+
+  // --- fracture (paper fig. 4) --------------------------------------------------------------
+
+  // After an accepted step: the bonds' forces from the forces that end the step (those of its
+  // second half kick: pistons, Coulomb friction, rolling resistance, drag, vegetation, gravity).
+  // When one exceeds its strength, the block's state at the break is sampled and split; each
+  // fragment gets a copy of the carpet in which the pistons the other fragments load are back at
+  // their footprints (their elastic energy goes with the fragment that loads them), and the touches
+  // it loads. Touches belong to the part that holds their contact point (RigidRock::part_at).
+  bool break_up() {
+    const std::vector<PistonTouch>& touches = now_.normal.touches;
+    BodyLoads loads;
+    loads.torque = now_.normal.torque + now_.drag_torque + kick_friction_torque_;
+    for (std::size_t i = 0; i < touches.size(); ++i) {
+      loads.contacts.push_back({touches[i].arm, touches[i].load * touches[i].normal + kick_friction_forces_[i]});
+    }
+    const std::vector<Eigen::Vector3d> forces = bond_forces(block_, now_.rock, loads);
+    std::vector<bool> broken(forces.size(), false);
+    bool any = false;
+    for (std::size_t b = 0; b < forces.size(); ++b) {
+      broken[b] = forces[b].norm() > block_.bonds()[b].strength;
+      any = any || broken[b];
+    }
+    if (!any) return false;
+    if (unsampled_) report_sample();
+    std::vector<Fragment> pieces = split(block_, now_.rock, broken);
+    std::vector<std::size_t> piece_of_part(body_.parts().size(), 0);
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      for (std::size_t part : pieces[k].parts) piece_of_part[part] = k;
+    }
+    const Eigen::Matrix3d to_body = now_.rock.orientation.toRotationMatrix().transpose();
+    std::vector<std::size_t> piece_of_touch;
+    for (const PistonTouch& touch : touches) piece_of_touch.push_back(piece_of_part[body_.part_at(to_body * touch.arm)]);
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      RunStart start{std::move(pieces[k].block), pieces[k].state, now_.time, spacing_, carpet_, {}, k > 0};
+      for (std::size_t i = 0; i < touches.size(); ++i) {
+        if (piece_of_touch[i] == k) {
+          start.touches.push_back(touches[i]);
+          continue;
+        }
+        Piston& piston = start.carpet->at(touches[i].i, touches[i].j);
+        press(piston.cycle, piston.state, piston.cycle.residual_compression(piston.state.max_compression));
+      }
+      fragments_.push_back(std::move(start));
+    }
+    return true;
   }
 
   // Paper 3.1, one kick-drift-kick step of `dt` seconds, forces at positions: half a kick with
@@ -309,15 +420,18 @@ class FullModelRun {
     const Eigen::Vector3d w_before = angular_velocity(body_, rock);
     kick(rock, body_.mass(), explicit_force(now_), now_.normal.torque + now_.drag_torque, duration);
     FrictionImpulse friction;
+    const bool bonded = !block_.bonds().empty();
+    if (bonded) kick_friction_forces_.clear();
     if (!now_.normal.touches.empty()) {
       const Eigen::Matrix3d rotation = rock.orientation.toRotationMatrix();
       const Eigen::Matrix3d world_inertia = rotation * body_.inertia() * rotation.transpose();
       friction = friction_impulse(now_.normal.touches, rock.velocity, angular_velocity(body_, rock), body_.mass(),
                                   world_inertia, parameters_.friction_slip_speed, parameters_.rolling_resistance,
-                                  duration);
+                                  duration, bonded ? &kick_friction_forces_ : nullptr);
       rock.velocity += friction.linear / body_.mass();
       rock.angular_momentum += friction.angular;
     }
+    if (bonded) kick_friction_torque_ = friction.angular / duration;
     const Eigen::Vector3d v_mean = 0.5 * (v_before + rock.velocity);
     const Eigen::Vector3d w_mean = 0.5 * (w_before + angular_velocity(body_, rock));
     now_.friction_loss -= friction.linear.dot(v_mean) + friction.angular.dot(w_mean) +
@@ -376,6 +490,13 @@ class FullModelRun {
     return dt;
   }
 
+  // The step's floor (s): kMinStepFraction of a fresh contact's step; none where the range has no
+  // ground (the clock's resolution then).
+  double min_step() const {
+    const double fresh = fresh_contact_step();
+    return std::isfinite(fresh) ? kMinStepFraction * fresh : 0.0;
+  }
+
   // Issue 4, Deliver 5, the coming contact: factor x 2 pi sqrt(m / K) with K = k3 times the
   // area of fresh_contact_pistons pistons (s), k3 the stiffest under the rock.
   double fresh_contact_step() const {
@@ -415,6 +536,16 @@ class FullModelRun {
     travelled_ = 0.0;
     unsampled_ = false;
   }
+  // A new fragment's first sample goes to on_fragment (trajectory_observer.hpp).
+  void report_first_sample() {
+    if (announced_) {
+      observer_.on_fragment(sample());
+      travelled_ = 0.0;
+      unsampled_ = false;
+    } else {
+      report_sample();
+    }
+  }
   // Losses at the load-weighted contact point (the centre when nothing touches).
   void report_loss(double friction, double deformation) {
     if (friction == 0.0 && deformation == 0.0) return;
@@ -425,8 +556,9 @@ class FullModelRun {
   const FullModelParameters& parameters_;
   const PerturbedGround& ground_;
   TrajectoryObserver& observer_;
-  const RigidRock body_;
-  const double spacing_;             // m: carpet_spacing x the nominal equivalent diameter cbrt(6 V / pi)
+  const FracturedBody block_;
+  const RigidRock& body_;            // block_'s
+  const double spacing_;             // m: carpet_spacing x the released rock's nominal equivalent diameter cbrt(6 V / pi)
   const std::int64_t margin_cells_;  // lattice steps of carpet_margin
   const PistonContactParameters contact_;
   PistonCarpet carpet_;
@@ -438,7 +570,13 @@ class FullModelRun {
   std::vector<PistonChange> journal_;   // piston states the last step changed
   std::vector<PistonTouch> previous_touches_;
   RunState now_, saved_;
+  bool from_break_ = false;          // a fragment, starting at the break that made it
+  bool announced_ = false;           // ...reported through on_fragment
+  std::vector<RunStart> fragments_;  // after a break
+  std::vector<Eigen::Vector3d> kick_friction_forces_;  // N per touch, Coulomb friction of the last half kick (bonded bodies)
+  Eigen::Vector3d kick_friction_torque_ = Eigen::Vector3d::Zero();  // N m, its torque with rolling resistance
   bool in_contact_ = false;
+  long stalled_steps_ = 0;           // accepted steps in a row shorter than kStallFraction of a fresh contact's
   double travelled_ = 0.0;           // m of path since the last sample
   bool unsampled_ = false;
   double rest_window_ = 0.0;         // s of the current rest window
@@ -454,10 +592,32 @@ StopReason FullModel::run(const PerturbedGround& ground, const Rock& rock, Rigid
   return run(ground, rock, start, observer, balance);
 }
 
-// Paper 3.1-3.3: one trajectory from `start` to its stop, with its energy bookkeeping.
+// Paper 3.1-3.3 and fig. 4: one trajectory from `start` to its stop, with its energy bookkeeping:
+// the block (pre_fractured_block, one part when intact), then every fragment of its breaks.
 StopReason FullModel::run(const PerturbedGround& ground, const Rock& rock, RigidBodyState start,
                           TrajectoryObserver& observer, EnergyBalance& balance) const {
-  return FullModelRun(parameters_, ground, rock, start, observer).run(balance);
+  FracturedBody block = pre_fractured_block(rock, parameters_.fracture_parts, parameters_.fracture_strength,
+                                            parameters_.surface_samples, parameters_.mass_resolution);
+  const RockState released =
+      rock_state(block.body(), start.position, start.velocity, start.orientation, start.angular_velocity);
+  const double spacing = parameters_.carpet_spacing * std::cbrt(6.0 * rock.volume() / std::numbers::pi);
+  balance = EnergyBalance{};
+  // Runs in order: the continuing fragment of a break first, the others after every earlier one.
+  std::deque<RunStart> runs;
+  runs.push_back({std::move(block), released, 0.0, spacing, std::nullopt, {}, false});
+  std::optional<StopReason> first_stop;
+  while (!runs.empty()) {
+    RunStart next = std::move(runs.front());
+    runs.pop_front();
+    RunEnd end = FullModelRun(parameters_, ground, observer, std::move(next)).run(balance);
+    if (end.stop) {
+      if (!first_stop) first_stop = end.stop;
+      continue;
+    }
+    for (std::size_t k = 1; k < end.fragments.size(); ++k) runs.push_back(std::move(end.fragments[k]));
+    runs.push_front(std::move(end.fragments.front()));
+  }
+  return *first_stop;
 }
 
 }  // namespace talus

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <numbers>
 
 #include "talus/core/counter_random.hpp"
@@ -31,8 +32,9 @@ Eigen::Quaterniond random_orientation(CounterRandom& random) {
                             b * std::sin(two_pi * u3));
 }
 
-// Follows one run for its summary (path length, largest energy, stop reason) and, when the
-// run is one of the saved sample, its line; forwards everything to the statistics recorder.
+// Follows one run for its summary (path length, largest energy and stop reason of its first
+// fragment, every fragment's stop) and, when the run is one of the saved sample, its first
+// fragment's line; forwards everything to the statistics recorder.
 class RunObserver final : public TrajectoryObserver {
  public:
   explicit RunObserver(RockfallStatistics::Recorder& recorder) : recorder_(recorder) {}
@@ -41,30 +43,41 @@ class RunObserver final : public TrajectoryObserver {
     path_length_ = 0;
     max_energy_ = 0;
     has_last_ = false;
+    following_ = true;
+    stops_.clear();
+    fragments_ = 0;
   }
   void on_sample(const TrajectorySample& sample) override {
+    recorder_.on_sample(sample);
+    if (!following_) return;
     if (has_last_) path_length_ += (sample.position - last_).head<2>().norm();
     last_ = sample.position;
     has_last_ = true;
     max_energy_ = std::max(max_energy_, sample.kinetic_energy);
     if (line_ != nullptr) line_->points.push_back(sample.position);
-    recorder_.on_sample(sample);
   }
   void on_energy_loss(double x, double y, double friction, double deformation) override {
     recorder_.on_energy_loss(x, y, friction, deformation);
   }
-  // The model has already reported `last` as the final sample (trajectory_observer.hpp).
+  // The model has already reported `last` as the final sample (trajectory_observer.hpp). The first
+  // stop ends the first fragment.
   void on_stop(const TrajectorySample& last, StopReason reason) override {
-    stop_reason_ = reason;
-    if (line_ != nullptr) {
+    if (following_ && line_ != nullptr) {
       line_->stop_reason = reason;
       line_->max_energy = max_energy_ / 1000.0;
       line_->runout_length = path_length_;
     }
+    following_ = false;
+    stops_.push_back(reason);
     recorder_.on_stop(last, reason);
   }
+  void on_fragment(const TrajectorySample& start) override {
+    ++fragments_;
+    recorder_.on_fragment(start);
+  }
   double path_length() const { return path_length_; }
-  StopReason stop_reason() const { return stop_reason_; }
+  const std::vector<StopReason>& stops() const { return stops_; }  // every fragment's, first fragment's first
+  std::uint64_t fragments() const { return fragments_; }
 
  private:
   RockfallStatistics::Recorder& recorder_;
@@ -72,7 +85,9 @@ class RunObserver final : public TrajectoryObserver {
   double path_length_ = 0, max_energy_ = 0;
   Eigen::Vector3d last_ = Eigen::Vector3d::Zero();
   bool has_last_ = false;
-  StopReason stop_reason_ = StopReason::at_rest;
+  bool following_ = true;            // still on the first fragment
+  std::vector<StopReason> stops_;
+  std::uint64_t fragments_ = 0;
 };
 
 // Everything one run draws from its own counter-based stream (seed, source, run).
@@ -137,6 +152,10 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
                         std::vector<double>(total, 0.0), total, threads};
   std::atomic<std::uint64_t> done{0};
   std::atomic<bool> cancelled{false};
+  // A run that throws (NumericalFailure: exit code 3) ends them all; the earliest such run's
+  // exception is rethrown once every thread has left the loop.
+  std::exception_ptr failure;
+  std::uint64_t failed_run = 0;
 
 #pragma omp parallel num_threads(threads)
   {
@@ -145,6 +164,7 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
     RunObserver observer(recorder);
     std::vector<TrajectoryLine> lines;
     std::vector<std::uint64_t> stop_counts(4, 0);
+    std::uint64_t fragments = 0;
     const bool reporter = omp_get_thread_num() == 0;
 
 #pragma omp for schedule(dynamic, 8)
@@ -162,10 +182,21 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
         line = &lines.back();
       }
       observer.start(line);
-      model.run(perturbed, draws.rock, draws.start, observer);
+      try {
+        model.run(perturbed, draws.rock, draws.start, observer);
+      } catch (...) {
+#pragma omp critical(talus_rockfall_failure)
+        if (failure == nullptr || k < failed_run) {
+          failure = std::current_exception();
+          failed_run = k;
+        }
+        cancelled.store(true);
+        continue;
+      }
       recorder.commit();
       result.runouts[k] = observer.path_length();
-      ++stop_counts[static_cast<std::size_t>(observer.stop_reason())];
+      for (const StopReason reason : observer.stops()) ++stop_counts[static_cast<std::size_t>(reason)];
+      fragments += observer.fragments();
       const std::uint64_t finished = done.fetch_add(1, std::memory_order_relaxed) + 1;
       if (reporter && progress != nullptr) {
         progress->report(static_cast<double>(finished) / static_cast<double>(total), "trajectories");
@@ -176,9 +207,11 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
     {
       result.statistics.merge(statistics);
       for (std::size_t r = 0; r < stop_counts.size(); ++r) result.stop_counts[r] += stop_counts[r];
+      result.fragments += fragments;
       for (auto& line : lines) result.lines.push_back(std::move(line));
     }
   }
+  if (failure != nullptr) std::rethrow_exception(failure);
   if (cancelled.load()) throw Cancelled();
   std::sort(result.lines.begin(), result.lines.end(), [](const TrajectoryLine& a, const TrajectoryLine& b) {
     return a.source_id != b.source_id ? a.source_id < b.source_id : a.run_id < b.run_id;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Cholesky>
 
@@ -21,6 +22,27 @@ void release(Piston& piston, double footprint, std::vector<PistonChange>& journa
 
 bool holds(const CarpetWindow& window, std::int64_t i, std::int64_t j) {
   return i >= window.i_begin && i < window.i_end && j >= window.j_begin && j < window.j_end;
+}
+
+// Paper 3.3, step 2: for a top inside the rock (body frame, m), the distance (m) along the unit
+// axis (body frame) to where the axis leaves the rock: bisection on the rock's function over
+// [0, exit], exit where the axis leaves the rock's bounding sphere (below the rock, so outside it).
+double depth_below_surface(const RigidRock& rock, const Eigen::Vector3d& top_body, const Eigen::Vector3d& axis_body,
+                           const PistonContactParameters& parameters) {
+  const double radius = rock.bounding_radius();
+  const double along = top_body.dot(axis_body);
+  const double exit = along + std::sqrt(std::max(0.0, along * along + radius * radius - top_body.squaredNorm()));
+  double inside = 0.0;
+  double outside = exit + parameters.bisection_tolerance;
+  for (int k = 0; k < parameters.bisection_iterations && outside - inside > parameters.bisection_tolerance; ++k) {
+    const double middle = 0.5 * (inside + outside);
+    if (rock.value(top_body - middle * axis_body) < 0.0) {
+      inside = middle;
+    } else {
+      outside = middle;
+    }
+  }
+  return 0.5 * (inside + outside);
 }
 
 }  // namespace
@@ -59,7 +81,10 @@ double active_slope(const StressCycle& cycle, const PistonState& state) {
 // sphere (below the rock, so outside it). Its pressure p acts on its cross-section
 // A along n = -g, g the rock's outward unit normal at t(d); the force p A n / |g . axis| is
 // minus the gradient of the piston's energy with respect to the rock's motion, because moving
-// the rock by dx changes d by g . dx / |g . axis| (docs/rockfall-full.md, section 3).
+// the rock by dx changes d by g . dx / |g . axis| (docs/rockfall-full.md, section 3). Under a
+// fragment, d is at most D / c, D = depth_inside at the rest top r and c the grazing cosine: where
+// that bound holds, moving the rock by dx changes d by -R grad D . dx / c, so the force is
+// p A R grad D / c, at r (section 3.5).
 void press_carpet(PistonCarpet& carpet, const PistonRange& range, const RigidRock& rock,
                   const Eigen::Vector3d& centre, const Eigen::Matrix3d& rotation,
                   const PistonContactParameters& parameters, const std::vector<PistonTouch>& previous,
@@ -100,35 +125,39 @@ void press_carpet(PistonCarpet& carpet, const PistonRange& range, const RigidRoc
       continue;
     }
     const Eigen::Vector3d axis_body = to_body * piston.axis;
-    // Where the axis leaves the bounding sphere: below the rock, and much closer than 2r.
-    const double along = top_body.dot(axis_body);
-    const double exit = along + std::sqrt(along * along + radius_squared - top_body.squaredNorm());
-    double inside = 0.0;
-    double outside = exit + parameters.bisection_tolerance;
-    for (int k = 0; k < parameters.bisection_iterations && outside - inside > parameters.bisection_tolerance; ++k) {
-      const double middle = 0.5 * (inside + outside);
-      if (rock.value(top_body - middle * axis_body) < 0.0) {
-        inside = middle;
-      } else {
-        outside = middle;
-      }
-    }
-    const double depth = 0.5 * (inside + outside);
+    const double depth = depth_below_surface(rock, top_body, axis_body, parameters);
+    double compression = footprint + depth;
+    // A fragment's cut faces (docs/rockfall-full.md, section 3.5): the compression is at most how
+    // deep the rest top lies below the surface over the grazing cosine.
+    const Eigen::Vector3d rest_offset = piston.rest_top - centre;
+    Eigen::Vector3d inwards = Eigen::Vector3d::Zero();
+    const double sideways = rock.depth_inside(to_body * rest_offset, inwards) / parameters.grazing_cosine;
+    const bool lateral = sideways < compression && inwards.norm() > 0.0;
+    if (lateral) compression = sideways;
     journal.push_back({piston.i, piston.j, piston.state});
     const double dissipated_before = dissipated_energy(piston.cycle, piston.state);
-    const double p = press(piston.cycle, piston.state, footprint + depth);
+    const double p = press(piston.cycle, piston.state, compression);
     response.dissipated += (dissipated_energy(piston.cycle, piston.state) - dissipated_before) * piston.area;
     if (!(p > 0.0)) continue;
 
-    Eigen::Vector3d outward = rotation * rock.gradient(top_body - depth * axis_body);
-    const double outward_norm = outward.norm();
-    outward = outward_norm > 0.0 ? Eigen::Vector3d(outward / outward_norm) : Eigen::Vector3d(-piston.axis);
-    const double cosine = std::max(std::abs(outward.dot(piston.axis)), parameters.grazing_cosine);
     PistonTouch touch;
     touch.i = piston.i;
     touch.j = piston.j;
-    touch.arm = offset - depth * piston.axis;
-    touch.normal = -outward;
+    double cosine = 1.0;  // metres of the rock's motion along touch.normal per metre of compression (-)
+    if (lateral) {
+      // The compression is depth_inside / grazing cosine at the rest top, fixed in the ground.
+      const Eigen::Vector3d pushed = rotation * inwards;
+      touch.arm = rest_offset;
+      touch.normal = pushed.normalized();
+      cosine = parameters.grazing_cosine / pushed.norm();
+    } else {
+      Eigen::Vector3d outward = rotation * rock.gradient(top_body - depth * axis_body);
+      const double outward_norm = outward.norm();
+      outward = outward_norm > 0.0 ? Eigen::Vector3d(outward / outward_norm) : Eigen::Vector3d(-piston.axis);
+      touch.arm = offset - depth * piston.axis;
+      touch.normal = -outward;
+      cosine = std::max(std::abs(outward.dot(piston.axis)), parameters.grazing_cosine);
+    }
     touch.load = p * piston.area / cosine;
     touch.friction = piston.friction;
     touch.vegetation_deperdition = piston.vegetation_deperdition;
@@ -145,20 +174,24 @@ void press_carpet(PistonCarpet& carpet, const PistonRange& range, const RigidRoc
 
 // Paper 3.3, step 4, one linearly implicit kick. With u = (v, w) after the kick, G_i u the slip at
 // touch i (G_i = P_i [1, -[r_i]x], P_i the projection across its normal) and M = diag(m 1, I_w),
-// the kick M u = M u* - dt sum c_i G_i^T G_i u is solved for u; the impulse is M (u - u*).
+// the kick M u = M u* - dt sum c_i G_i^T G_i u is solved for u; the impulse is M (u - u*), and
+// touch i's force -c_i G_i u.
 FrictionImpulse friction_impulse(const std::vector<PistonTouch>& touches, const Eigen::Vector3d& velocity,
                                  const Eigen::Vector3d& spin, double mass, const Eigen::Matrix3d& world_inertia,
-                                 double slip_speed, double rolling_resistance, double duration) {
+                                 double slip_speed, double rolling_resistance, double duration,
+                                 std::vector<Eigen::Vector3d>* touch_forces) {
   using Matrix6d = Eigen::Matrix<double, 6, 6>;
   using Vector6d = Eigen::Matrix<double, 6, 1>;
+  using SlipMap = Eigen::Matrix<double, 3, 6>;
   Matrix6d friction = Matrix6d::Zero();  // sum of c_i G_i^T G_i (N s/m, N s, N m s)
+  std::vector<std::pair<double, SlipMap>> coulomb;  // c_i and G_i, kept for touch_forces
   bool sliding = false;
   for (const PistonTouch& touch : touches) {
     const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - touch.normal * touch.normal.transpose();
     Eigen::Matrix3d arm_cross;
     arm_cross << 0.0, -touch.arm.z(), touch.arm.y(), touch.arm.z(), 0.0, -touch.arm.x(), -touch.arm.y(),
         touch.arm.x(), 0.0;
-    Eigen::Matrix<double, 3, 6> slip_map;
+    SlipMap slip_map;
     slip_map << across, -across * arm_cross;
     const double slip = (slip_map.leftCols<3>() * velocity + slip_map.rightCols<3>() * spin).norm();
     const double coefficient = touch.friction * touch.load / std::max(slip_speed, slip);
@@ -166,6 +199,7 @@ FrictionImpulse friction_impulse(const std::vector<PistonTouch>& touches, const 
       friction.noalias() += coefficient * slip_map.transpose() * slip_map;
       sliding = true;
     }
+    if (touch_forces != nullptr) coulomb.emplace_back(coefficient, slip_map);
     // Rolling resistance: the "slip" is the rolling speed l |w_t| of the centre over the contact.
     const double lever = std::abs(touch.arm.dot(touch.normal));
     const Eigen::Matrix3d rolling_map = lever * across;
@@ -176,6 +210,7 @@ FrictionImpulse friction_impulse(const std::vector<PistonTouch>& touches, const 
       sliding = true;
     }
   }
+  if (touch_forces != nullptr) touch_forces->assign(touches.size(), Eigen::Vector3d::Zero());
   FrictionImpulse impulse;
   if (!sliding) return impulse;
   Matrix6d inertia = Matrix6d::Zero();
@@ -188,6 +223,9 @@ FrictionImpulse friction_impulse(const std::vector<PistonTouch>& touches, const 
   const Vector6d change = inertia * after - momentum;
   impulse.linear = change.head<3>();
   impulse.angular = change.tail<3>();
+  if (touch_forces != nullptr) {
+    for (std::size_t i = 0; i < coulomb.size(); ++i) (*touch_forces)[i] = -coulomb[i].first * (coulomb[i].second * after);
+  }
   return impulse;
 }
 

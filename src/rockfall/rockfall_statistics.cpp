@@ -185,7 +185,7 @@ struct RockfallStatistics::Recorder::State {
   void reset() {
     passages.clear();
     has_previous = false;
-    deposit_cell = -1;
+    deposit_cells.clear();
   }
 
   struct Point {
@@ -196,7 +196,7 @@ struct RockfallStatistics::Recorder::State {
   std::vector<Passage> passages;              // cells touched by the current trajectory
   bool has_previous = false;
   Point previous{};
-  std::ptrdiff_t deposit_cell = -1;
+  std::vector<std::size_t> deposit_cells;     // where the trajectory's fragments came to rest
 };
 
 RockfallStatistics::Recorder::Recorder(RockfallStatistics& statistics)
@@ -215,7 +215,14 @@ void RockfallStatistics::Recorder::on_energy_loss(double x, double y, double fri
 
 void RockfallStatistics::Recorder::on_stop(const TrajectorySample& last, StopReason reason) {
   state_->sample(last);
-  state_->deposit_cell = reason == StopReason::at_rest ? state_->cell_of(last.position.x(), last.position.y()) : -1;
+  const std::ptrdiff_t cell = state_->cell_of(last.position.x(), last.position.y());
+  if (reason == StopReason::at_rest && cell >= 0) state_->deposit_cells.push_back(static_cast<std::size_t>(cell));
+}
+
+// Paper fig. 4: a fragment's path starts anew at its first sample, not joined to the last one.
+void RockfallStatistics::Recorder::on_fragment(const TrajectorySample& start) {
+  state_->has_previous = false;
+  state_->sample(start);
 }
 
 void RockfallStatistics::Recorder::commit() {
@@ -233,8 +240,9 @@ void RockfallStatistics::Recorder::commit() {
     if (p.friction != 0) a.friction.add(cell, p.friction);
     if (p.deformation != 0) a.deformation.add(cell, p.deformation);
   }
-  const std::ptrdiff_t deposit = state_->deposit_cell;
-  if (deposit >= 0 && a.valid[static_cast<std::size_t>(deposit)]) a.deposits.add(static_cast<std::size_t>(deposit));
+  for (const std::size_t deposit : state_->deposit_cells) {
+    if (a.valid[deposit]) a.deposits.add(deposit);
+  }
   ++a.rocks;
   state_->reset();
 }

@@ -6,8 +6,9 @@
 // Coulomb friction from the lithology and vegetation friction quadratic in speed; torques from
 // the contact points; air drag as the surface integral of paper 3.2. Time steps follow the
 // contact stiffness and the rock's mass; a guard retries blown-up steps with smaller ones and
-// throws NumericalFailure when it cannot recover. Equations, choices and parameters:
-// docs/rockfall-full.md.
+// throws NumericalFailure when it cannot recover. A block may be pre-fractured into parts held by
+// breakable bonds (paper fig. 4, fracture.hpp); its fragments continue as rocks of their own.
+// Equations, choices and parameters: docs/rockfall-full.md.
 #pragma once
 
 #include "talus/rockfall/trajectory_model.hpp"
@@ -45,9 +46,15 @@ struct FullModelParameters {
                                       // the carpet covers it all)
   int surface_samples = 256;          // samples of the rock's implicit surface (air drag)
   int mass_resolution = 32;           // cells per axis of the mass and inertia integration (0.4% at 32)
+  // Pre-fractured blocks (paper 3.1, fig. 4; fracture.hpp, docs/rockfall-full.md, section 11):
+  int fracture_parts = 1;             // 1: intact; 2: halves across the longest axis; 4: also across the
+                                      // second; 8: octants
+  double fracture_strength = 1.0e6;   // N: a bond between two parts breaks when its force exceeds this
 };
 
-// Energy bookkeeping of one run (J), exact sums over steps (issue 4, Deliver 7).
+// Energy bookkeeping of one run (J), exact sums over steps (issue 4, Deliver 7). For a rock that
+// broke, the sums over its fragments: their final kinetic, potential and elastic energies, and
+// every loss of the block and of each fragment.
 struct EnergyBalance {
   double kinetic = 0;          // translation + rotation, now
   double potential = 0;        // m g z of the centre, now
@@ -61,6 +68,8 @@ struct EnergyBalance {
 class FullModel final : public TrajectoryModel {
  public:
   explicit FullModel(FullModelParameters parameters = {}) : parameters_(parameters) {}
+  // Returns the stop reason of the trajectory's first fragment (the whole rock when it does not
+  // break; trajectory_observer.hpp).
   StopReason run(const PerturbedGround& ground, const Rock& rock, RigidBodyState start,
                  TrajectoryObserver& observer) const override;
   // As run(), and fills `balance` with the final energy bookkeeping (for tests and calibration).

@@ -38,13 +38,16 @@ struct RockfallSettings {
   std::size_t saved_trajectories = 500; // at most this many lines kept for trajectories.gpkg
 };
 
+// A rock that breaks (paper fig. 4, full mode) reports several fragments (trajectory_observer.hpp):
+// its line and runout follow its first fragment only; stop_counts count every fragment's stop.
 struct RockfallResult {
   RockfallStatistics statistics;
   std::vector<TrajectoryLine> lines;            // sorted by (source, run)
-  std::vector<std::uint64_t> stop_counts;       // by StopReason
+  std::vector<std::uint64_t> stop_counts;       // by StopReason, one per fragment (a rock that never broke is one)
   std::vector<double> runouts;                  // m, horizontal path length of every run, by (source, run)
   std::uint64_t trajectories = 0;
   int threads = 1;
+  std::uint64_t fragments = 0;                  // extra rocks born from fractures, over all runs
 };
 
 // One release location: a cell centre (jittered inside its cell) or a point.

@@ -79,7 +79,9 @@ struct PistonRange {
 // last press; those outside the range go back to their footprint too. The rock's centre is at
 // `centre` (m) and turned by `rotation` (body -> world). Every piston whose state changes is
 // appended to `journal` with its old state. `response` is overwritten (its touches' storage is
-// reused).
+// reused). Under a rock with cut faces on its surface (a fragment, RigidRock::has_cut_faces) a
+// piston's compression is at most RigidRock::depth_inside at its rest top over grazing_cosine,
+// which keeps it continuous at the cut faces' sharp edges (docs/rockfall-full.md, section 3.5).
 void press_carpet(PistonCarpet& carpet, const PistonRange& range, const RigidRock& rock,
                   const Eigen::Vector3d& centre, const Eigen::Matrix3d& rotation,
                   const PistonContactParameters& parameters, const std::vector<PistonTouch>& previous,
@@ -102,10 +104,14 @@ double active_slope(const StressCycle& cycle, const PistonState& state);
 // max(slip_speed, l |w_t*|): a rolling rock meets a resisting torque rolling mu N l, which for a
 // sphere gives the deceleration A g (rolling mu cos t - sin t), A = m r^2 / (I + m r^2), of
 // REFERENCES.md; rolling_resistance scales the touch's friction coefficient into rolling mu.
-// Returns the impulse to add to the momenta.
+// Returns the impulse to add to the momenta. With `touch_forces`, also each touch's Coulomb
+// friction force -c s (N, world, at its contact point; constant over the kick, so their sum is
+// the linear impulse over `duration`), in the touches' order; rolling resistance is a torque
+// only (the bond forces of fracture.hpp need the forces' points).
 FrictionImpulse friction_impulse(const std::vector<PistonTouch>& touches, const Eigen::Vector3d& velocity,
                                  const Eigen::Vector3d& spin, double mass, const Eigen::Matrix3d& world_inertia,
-                                 double slip_speed, double rolling_resistance, double duration);
+                                 double slip_speed, double rolling_resistance, double duration,
+                                 std::vector<Eigen::Vector3d>* touch_forces = nullptr);
 
 // Paper 2.1 (vegetation) and 3.3, step 4: -c m (N / sum N) |v| v per touch for a rock of mass m
 // (kg) moving at v (m/s), applied at the centre: the whole contact gives the fast mode's

@@ -17,7 +17,7 @@ namespace talus {
 struct RockfallLayers {
   Grid<float> reach_probability;        // - : passages / simulated rocks
   Grid<float> passages;                 // count of trajectories through the cell
-  Grid<float> deposits;                 // count of rocks stopped in the cell
+  Grid<float> deposits;                 // count of rocks (fragments included) stopped in the cell
   Grid<float> energy_max;               // kJ
   Grid<float> energy_p95;               // kJ
   Grid<float> jump_height_p95;          // m
@@ -49,8 +49,11 @@ class RockfallStatistics {
 };
 
 // Gathers one trajectory (cells crossed between consecutive samples by a grid walk, the
-// largest energy, jump height and speed per crossed cell, losses per cell, the stop cell) and
-// adds it to its statistics on commit().
+// largest energy, jump height and speed per crossed cell, losses per cell, the stop cells) and
+// adds it to its statistics on commit(). A trajectory whose rock broke (paper fig. 4) counts once
+// per cell however many of its fragments crossed it (passages, reach probability, one energy and
+// jump height per passage: the largest over its fragments), and once in `rocks`; every fragment
+// that comes to rest counts as a deposit.
 class RockfallStatistics::Recorder final : public TrajectoryObserver {
  public:
   explicit Recorder(RockfallStatistics& statistics);
@@ -58,6 +61,7 @@ class RockfallStatistics::Recorder final : public TrajectoryObserver {
   void on_sample(const TrajectorySample& sample) override;
   void on_energy_loss(double x, double y, double friction, double deformation) override;
   void on_stop(const TrajectorySample& last, StopReason reason) override;
+  void on_fragment(const TrajectorySample& start) override;
   void commit();   // adds the trajectory and resets the recorder for the next one
 
  private:

@@ -1,7 +1,8 @@
-// What a trajectory reports while it runs: the seam between the trajectory models (fast
-// bounce now, the piston carpet next) and everything downstream (hazard statistics, sampled
-// trajectory lines). A model calls on_sample at least every `sample_spacing` metres of travel
-// and at every contact, so consecutive samples are joined by straight segments.
+// What a trajectory reports while it runs: the seam between the trajectory models (fast bounce,
+// the piston carpet) and everything downstream (hazard statistics, sampled trajectory lines). A
+// model calls on_sample at least every `sample_spacing` metres of travel and at every contact, so
+// consecutive samples are joined by straight segments; a rock that breaks (paper fig. 4) reports
+// its fragments one after the other, each begun by on_fragment.
 #pragma once
 
 #include <Eigen/Core>
@@ -38,6 +39,13 @@ class TrajectoryObserver {
   // vegetation) and by ground deformation (impacts).
   virtual void on_energy_loss(double x, double y, double friction, double deformation) = 0;
   virtual void on_stop(const TrajectorySample& last, StopReason reason) = 0;
+  // Paper fig. 4: the rock broke. The samples after this call belong to a new fragment starting
+  // at `start` (its first sample, not reported again through on_sample), not joined to the
+  // previous sample; every fragment ends with its own on_stop. A trajectory reports its first
+  // fragment (the rock from its release on, continued at each break by the piece that holds the
+  // block's first part) to its on_stop, then each other fragment from its on_fragment to its
+  // on_stop. Observers that follow one rock only can ignore it (the default does nothing).
+  virtual void on_fragment([[maybe_unused]] const TrajectorySample& start) {}
 };
 
 }  // namespace talus

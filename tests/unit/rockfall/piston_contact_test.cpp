@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "../../validation/full_model_scenes.hpp"
+#include "talus/rockfall/fracture.hpp"
 
 namespace talus {
 namespace {
@@ -102,6 +103,72 @@ TEST(PistonContact, ForceAndTorqueAreMinusTheGradientOfThePistonsEnergy) {
                       std::abs(response.torque[k] - torque) / response.torque.norm()});
   }
   std::printf("force and torque against the energy's gradient: largest relative difference %.1e\n", worst);
+}
+
+// docs/rockfall-full.md, section 3.5. The half of a 2 x 1 x 1 m box (fracture.hpp) stands on its
+// outer face, sunk 2 cm into flat elastic ground, its vertical cut face leading towards -x over a
+// row of pistons. Along the axis alone, a top that the face passes has the half's 2 cm below it at
+// once: the carpet's energy jumps by k A (2 cm)^2 / 2 per piston of the row. The compression
+// min(axial depth, depth below the surface / grazing cosine) makes it continuous: the largest
+// change of the energy over a 0.25 mm move is a quarter of that over 1 mm (a jump would give the
+// same), and the force is minus its gradient where the face has just passed the row.
+class FragmentFaceSweep : public ::testing::Test {
+ protected:
+  FragmentFaceSweep() : half_(half_box()) {}
+  static RigidRock half_box() {
+    const FracturedBody block = pre_fractured_block(full_model_scenes::block(BlockShape::box, {2.0, 1.0, 1.0}), 2,
+                                                    1.0e6, 256, 32);
+    return RigidRock(std::vector<RockPart>{block.body().parts()[1]}, block.body().inner_radius());
+  }
+  // The half's centre with its cut face at x = face (m), 2 cm into the ground at z = 10 m.
+  Eigen::Vector3d centre(double face) const {
+    const double to_face = -half_.parts()[0].cuts[0].offset;  // m: the face's x in the half's frame
+    return {face - to_face, -50.0, 10.0 + 0.5 - kSink};
+  }
+  NormalResponse press_at(double face) const {
+    Scene fresh(0.0, full_model_scenes::elastic_soil(1.0e8, 0.0));
+    NormalResponse response;
+    std::vector<PistonChange> journal;
+    press_carpet(fresh.carpet, fresh.range, half_, centre(face), Eigen::Matrix3d::Identity(), {}, {}, response, journal);
+    return response;
+  }
+  // Largest change of the elastic energy (J) over moves of `step` m as the face crosses the row
+  // of pistons at x = 50 m.
+  double largest_change(double step) const {
+    double largest = 0.0;
+    double before = press_at(50.0 + 0.01).elastic_energy;
+    for (double face = 50.0 + 0.01 - step; face > 50.0 - 0.02; face -= step) {
+      const double energy = press_at(face).elastic_energy;
+      largest = std::max(largest, std::abs(energy - before));
+      before = energy;
+    }
+    return largest;
+  }
+  static constexpr double kSink = 0.02;  // m
+  RigidRock half_;
+};
+
+TEST_F(FragmentFaceSweep, EnergyChangesContinuouslyAsTheCutFacePassesAPiston) {
+  ASSERT_TRUE(half_.has_cut_faces());
+  const double coarse = largest_change(1e-3);
+  const double fine = largest_change(2.5e-4);
+  const double row_jump = 1.0e8 * kSpacing * kSpacing * kSink * kSink / 2.0;  // J per piston, along the axis
+  std::printf("face sweep: largest energy change %.1f J per mm, %.1f J per 0.25 mm (one piston's jump: %.0f J)\n",
+              coarse, fine, row_jump);
+  EXPECT_GT(coarse, 0.5 * row_jump);    // the row loads over these few millimetres
+  EXPECT_LT(fine, 0.3 * coarse);        // continuous: a quarter, 0.3 allows the kinks of the min
+}
+
+// Central differences of 1e-5 m on elastic pistons: as in the test above, well inside the
+// lateral branch (the face 1 mm past the row: 5 mm of compression out of 2 cm).
+TEST_F(FragmentFaceSweep, LateralForceIsMinusTheGradientOfTheEnergy) {
+  const NormalResponse response = press_at(50.0 - 1e-3);
+  ASSERT_GT(response.touches.size(), 0u);
+  const double h = 1e-5;
+  const double force = -(press_at(50.0 - 1e-3 + h).elastic_energy - press_at(50.0 - 1e-3 - h).elastic_energy) / (2.0 * h);
+  std::printf("face sweep: force along x %.1f N, energy gradient %.1f N\n", response.force.x(), force);
+  EXPECT_GT(response.force.x(), 0.0);                                  // the row pushes the face back
+  EXPECT_NEAR(response.force.x(), force, 1e-3 * std::abs(force));      // differences' h^2 error and bisection noise
 }
 
 TEST(PistonContact, PistonsTheRockLeftGoBackToTheirFootprint) {
@@ -216,6 +283,33 @@ TEST(PistonContact, VegetationGivesTheFastModesDecelerationShared) {
   const Eigen::Vector3d force = vegetation_force(touches, v, 200.0);
   EXPECT_NEAR((force - (-0.03 * 200.0 * 5.0) * v).norm(), 0.0, 1e-9);
   EXPECT_EQ(vegetation_force({}, v, 200.0), Eigen::Vector3d::Zero());
+}
+
+// The touches' Coulomb forces (for the bond forces of pre-fractured blocks, fracture.hpp) add up
+// to the kick's linear impulse over its duration, each against its own slip.
+TEST(PistonContact, TouchForcesAddUpToTheFrictionImpulse) {
+  const double mass = 1000.0;
+  const Eigen::Matrix3d inertia = Eigen::Vector3d(100.0, 120.0, 150.0).asDiagonal();
+  std::vector<PistonTouch> touches{touch_at({0.3, 0.1, -0.5}, 4000.0, 0.5), touch_at({-0.3, 0.0, -0.5}, 6000.0, 0.4)};
+  touches[1].normal = Eigen::Vector3d(0.2, 0.0, 1.0).normalized();
+  const Eigen::Vector3d v(2.0, -1.0, 0.1);
+  const Eigen::Vector3d w(0.5, 1.0, -0.3);
+  const double duration = 2e-3;  // s
+  std::vector<Eigen::Vector3d> forces;
+  const FrictionImpulse impulse = friction_impulse(touches, v, w, mass, inertia, 0.01, 1.0, duration, &forces);
+  ASSERT_EQ(forces.size(), touches.size());
+  // Rounding of the 6 x 6 solve: 1e-9 of the impulse.
+  EXPECT_LT((forces[0] + forces[1] - impulse.linear / duration).norm(), 1e-9 * impulse.linear.norm() / duration);
+  for (std::size_t i = 0; i < touches.size(); ++i) {
+    const Eigen::Vector3d slip = v + w.cross(touches[i].arm);
+    EXPECT_LT(std::abs(forces[i].dot(touches[i].normal)), 1e-9 * forces[i].norm());  // across the normal
+    EXPECT_LT(forces[i].dot(slip), 0.0);                                               // against the slip
+    EXPECT_LE(forces[i].norm(), touches[i].friction * touches[i].load * (1.0 + 1e-12));  // at most mu N
+  }
+  // Without the output the impulse is the same, bit for bit.
+  const FrictionImpulse alone = friction_impulse(touches, v, w, mass, inertia, 0.01, 1.0, duration);
+  EXPECT_EQ(alone.linear, impulse.linear);
+  EXPECT_EQ(alone.angular, impulse.angular);
 }
 
 }  // namespace

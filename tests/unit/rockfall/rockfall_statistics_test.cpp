@@ -363,5 +363,34 @@ TEST(RockfallStatistics, RefusesToMergeStatisticsOfAnotherGrid) {
   EXPECT_THROW(a.merge(RockfallStatistics(Grid<double>(other_spec, 1.0))), GridMismatch);
 }
 
+// Paper fig. 4: a rock that broke reports its fragments one after the other. Each fragment's
+// path starts anew (not joined to the last sample), a cell crossed by both counts one passage,
+// and every fragment at rest is a deposit of the same simulated rock.
+TEST(RockfallStatistics, FragmentsShareOnePassagePerCellAndDepositEach) {
+  RockfallStatistics statistics(test_dem());
+  RockfallStatistics::Recorder recorder = statistics.recorder();
+  recorder.on_sample(sample_at(1.5, 1.5, 2000.0, 1.0, 5.0));
+  recorder.on_sample(sample_at(3.5, 1.5, 1000.0, 1.0, 4.0));
+  recorder.on_stop(sample_at(3.5, 1.5, 0.0, 0.0, 0.0), StopReason::at_rest);
+  recorder.on_fragment(sample_at(2.5, 4.5, 5000.0, 2.0, 6.0));
+  recorder.on_sample(sample_at(3.5, 4.5, 100.0, 1.0, 3.0));
+  recorder.on_sample(sample_at(3.5, 1.5, 50.0, 1.0, 1.0));
+  recorder.on_stop(sample_at(3.5, 1.5, 0.0, 0.0, 0.0), StopReason::at_rest);
+  recorder.commit();
+  const RockfallLayers layers = statistics.layers();
+  const auto at = [](const Grid<float>& layer, int col, int row) { return layer.at(col, row); };
+  EXPECT_EQ(statistics.rocks(), 1u);
+  EXPECT_EQ(at(layers.deposits, 3, 1), 2.0f);           // both fragments rest in cell (3, 1)
+  EXPECT_EQ(at(layers.passages, 3, 1), 1.0f);           // ...which counts one passage
+  EXPECT_EQ(at(layers.reach_probability, 3, 1), 1.0f);
+  EXPECT_EQ(at(layers.passages, 2, 1), 1.0f);           // first fragment's path
+  EXPECT_EQ(at(layers.passages, 2, 4), 1.0f);           // second fragment's start
+  EXPECT_EQ(at(layers.passages, 3, 3), 1.0f);           // its path back up to row 1
+  EXPECT_EQ(at(layers.passages, 2, 3), 0.0f);           // not joined from (3.5, 1.5) to (2.5, 4.5)
+  EXPECT_EQ(at(layers.energy_max, 2, 4), 5.0f);         // kJ: the fragment's own energy
+  // kJ: the largest of both fragments' energies in the shared cell: 1250 J where the first enters it
+  EXPECT_EQ(at(layers.energy_max, 3, 1), 1.25f);
+}
+
 }  // namespace
 }  // namespace talus
