@@ -1,6 +1,8 @@
 // Building the scene from the user's files (DESIGN.md sections 1 and 3).
 #include "talus/gis/scene.hpp"
 
+#include <ogrsf_frmts.h>
+
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -126,6 +128,64 @@ void load_vegetation(Scene& scene, const CrsOption& crs) {
   }
 }
 
+// Mud flow releases the depth given per feature (DESIGN.md section 3, --release): every layer
+// of a vector release needs a `depth` attribute, and every feature a non-zero value in it. A
+// raster release carries its depths in its values and passes.
+void require_release_depths(const std::filesystem::path& path) {
+  const std::string name = describe_input(path, "release");
+  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  if (!dataset) return;
+  for (OGRLayer* layer : dataset->GetLayers()) {
+    const std::string layer_name = layer->GetName();
+    const int depth_field = layer->GetLayerDefn()->GetFieldIndex("depth");
+    if (depth_field < 0) {
+      throw InputError(name + ": layer '" + layer_name +
+                       "' has no `depth` attribute; a mud-flow release needs the release depth (m) of each polygon or point");
+    }
+    for (auto& feature : *layer) {
+      const OGRGeometry* geometry = feature->GetGeometryRef();
+      if (geometry == nullptr || geometry->IsEmpty()) continue;
+      if (!feature->IsFieldSetAndNotNull(depth_field) || feature->GetFieldAsDouble(depth_field) == 0.0) {
+        throw InputError(name + ": feature " + std::to_string(feature->GetFID()) + " of layer '" + layer_name +
+                         "' has no release depth (`depth` is empty or 0 m)");
+      }
+    }
+  }
+}
+
+// The erodible depth (m) per DEM cell, aligned bilinearly (continuous values); negative,
+// nodata and off-terrain cells hold no material.
+Grid<float> load_erodible(Scene& scene, const CrsOption& crs) {
+  const Grid<double>& dem = scene.dem.elevation;
+  const std::string name = describe_input(scene.inputs.erodible, "erodible");
+  const AlignedRaster raster = align_raster(scene.inputs.erodible, "erodible", dem.spec(), ValueKind::continuous, crs);
+  Grid<float> erodible(dem.spec(), 0.0f);
+  std::size_t cells = 0, negative = 0;
+  double volume = 0;  // m3
+  for (std::size_t i = 0; i < erodible.size(); ++i) {
+    if (!dem.is_valid(i) || !raster.values.is_valid(i)) continue;
+    if (raster.values[i] < 0.0) {
+      ++negative;
+      continue;
+    }
+    erodible[i] = static_cast<float>(raster.values[i]);
+    if (erodible[i] > 0.0f) {
+      ++cells;
+      volume += static_cast<double>(erodible[i]) * dem.spec().cell_area();
+    }
+  }
+  std::ostringstream note;
+  note << "erodible: " << cells << " cells, " << std::lround(volume) << " m3 of material, aligned by " << raster.method;
+  scene.notes.push_back(note.str());
+  if (negative > 0) {
+    scene.problems.push_back(name + ": " + std::to_string(negative) + " cells hold negative depths; they count as no material");
+  }
+  if (cells == 0) {
+    scene.problems.push_back(name + ": no cell of valid terrain holds erodible material (every value is 0, negative or nodata)");
+  }
+  return erodible;
+}
+
 }  // namespace
 
 GroundModel Scene::ground_model() const {
@@ -163,7 +223,11 @@ Scene load_scene(const SceneInputs& inputs) {
     scene.notes.push_back("lithology: aligned by " + raster.method);
   }
   load_vegetation(scene, crs);
-  if (!inputs.release.empty()) scene.release = read_release(inputs.release, dem, crs);
+  if (!inputs.release.empty()) {
+    scene.release = read_release(inputs.release, dem, crs);
+    if (inputs.release_needs_depth) require_release_depths(inputs.release);
+  }
+  if (!inputs.erodible.empty()) scene.erodible = load_erodible(scene, crs);
   return scene;
 }
 

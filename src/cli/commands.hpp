@@ -17,8 +17,11 @@ void add_info_command(CLI::App& app, Action& action);
 void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line);
 void add_params_command(CLI::App& app, Action& action);
 void add_calibrate_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line);
+void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line);
 
 // Every rock-fall parameter with its section, unit, meaning and default.
 nlohmann::json rockfall_parameters();
+// Every mud-flow parameter with its section, unit, meaning and default.
+nlohmann::json mudflow_parameters();
 
 }  // namespace talus::cli

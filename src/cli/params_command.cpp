@@ -10,7 +10,7 @@ void add_params_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("params", "Print every parameter (section, name, unit, meaning, default) as JSON");
   cmd->callback([&action] {
     action = [] {
-      const nlohmann::json all = {{"rockfall", rockfall_parameters()}};
+      const nlohmann::json all = {{"rockfall", rockfall_parameters()}, {"mudflow", mudflow_parameters()}};
       std::cout << all.dump(2) << '\n';
       return 0;
     };

@@ -19,8 +19,12 @@ struct SceneInputs {
   std::filesystem::path lithology;   // empty: the materials' default class everywhere
   std::filesystem::path vegetation;  // empty: the materials' default class everywhere
   std::filesystem::path release;     // empty: no release (talus info only)
+  std::filesystem::path erodible;    // empty: no erodible material (mud flow, --erodible)
   std::filesystem::path materials;   // empty: the built-in table
   std::string crs;                   // the --crs text, empty for the files' own
+  // Mud flow: every polygon or point of a vector release must carry a non-zero `depth` (m); a
+  // layer without the attribute is refused instead of releasing the default 1 m.
+  bool release_needs_depth = false;
 };
 
 struct Scene {
@@ -31,6 +35,7 @@ struct Scene {
   Grid<double> vegetation;           // deperdition coefficient c per cell (1/m)
   std::optional<Grid<int>> vegetation_classes;  // class codes, when the raster holds classes
   std::optional<ReleaseSet> release;
+  std::optional<Grid<float>> erodible;  // m of erodible material per cell (0 where none), with --erodible
   std::vector<std::string> notes;    // what was done to the inputs (alignment, reprojection)
   std::vector<std::string> problems; // what the user should look at; not fatal
 
@@ -39,6 +44,8 @@ struct Scene {
 };
 
 // Reads and aligns every input; throws InputError with one line naming the file and problem.
+// The erodible raster holds depths (m) and is aligned bilinearly like vegetation coefficients;
+// its negative and nodata values count as no material.
 Scene load_scene(const SceneInputs& inputs);
 
 }  // namespace talus::gis

@@ -1,0 +1,222 @@
+// particles.gpkg through OGR's GeoPackage driver (one layer, its fields, the software version,
+// every feature in one transaction) and its QML style, written in the format QGIS 3.22 reads.
+// QGIS 3.22 resets a layer's temporal settings after loading the style beside it, but guesses
+// them from the field names: a DateTime field named start_time and one named end_time give
+// "start and end date/time from fields" preselected, so the animation is one tick away (the
+// style's temporal part applies when the style is loaded explicitly). docs/layers.md, particles.gpkg.
+#include "talus/gis/particle_snapshot_writer.hpp"
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_feature.h>
+#include <ogr_geometry.h>
+#include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "talus/gis/gdal_dataset.hpp"
+
+namespace talus::gis {
+namespace {
+
+struct Field {
+  const char* name;
+  OGRFieldType type;
+  const char* alias;
+};
+
+// The attributes in the layer's order.
+constexpr std::array kFields{
+    Field{"time_s", OFTReal, "Time after release (s)"},
+    Field{"start_time", OFTDateTime, "Shown from (2000-01-01 00:00:00 = release)"},
+    Field{"end_time", OFTDateTime, "Shown until"},
+    Field{"depth_m", OFTReal, "Flow depth (m)"},
+    Field{"speed_m_s", OFTReal, "Speed (m/s)"},
+    Field{"mass_kg", OFTReal, "Mass (kg)"},
+    Field{"radius_m", OFTReal, "Particle radius (m)"},
+};
+
+// The flow_depth_max classes (m, gis/styles/make_styles.py): upper limits and one colour per
+// class plus one above the last limit.
+constexpr std::array kDepthLimits{0.1, 0.25, 0.5, 1.0, 2.0, 5.0};
+constexpr std::array kDepthColours{"239,243,255", "198,219,239", "158,202,225", "107,174,214",
+                                   "66,146,198",  "33,113,181",  "8,69,148"};
+
+// end_time lies this much (s) before the next snapshot's start_time: QGIS hands the temporal
+// filter to the GeoPackage as a comparison of date-time texts, in which an end equal to a
+// frame's start counts as after it, so two snapshots would show in one frame.
+constexpr double kEndGap = 0.001;
+
+// Seconds of 2000-01-01T00:00:00Z after 1970-01-01T00:00:00Z.
+constexpr std::time_t kEpochSeconds = 946684800;
+
+[[noreturn]] void gdal_failure(const std::filesystem::path& path, const std::string& step) {
+  throw std::runtime_error("cannot write " + path.string() + ": " + step + ": " + last_gdal_error("failed"));
+}
+
+void check(OGRErr result, const std::filesystem::path& path, const std::string& step) {
+  if (result != OGRERR_NONE) gdal_failure(path, step);
+}
+
+// The layer's CRS; local coordinates get the GeoPackage's "Undefined Cartesian SRS" (srs_id -1,
+// metres) rather than GDAL 3.6's default for none, the undefined geographic SRS.
+OGRSpatialReference layer_crs(const std::string& crs_wkt, const std::filesystem::path& path) {
+  OGRSpatialReference srs;
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (crs_wkt.empty()) {
+    srs.SetLocalCS("Undefined Cartesian SRS");
+    srs.SetLinearUnits(SRS_UL_METER, 1.0);
+  } else {
+    check(srs.importFromWkt(crs_wkt.c_str()), path, "reading the CRS");
+  }
+  return srs;
+}
+
+OGRLayer& create_layer(GDALDataset& dataset, const std::string& crs_wkt, const std::filesystem::path& path) {
+  OGRSpatialReference srs = layer_crs(crs_wkt, path);
+  const char* const options[] = {"IDENTIFIER=Mud-flow particles",
+                                 "DESCRIPTION=Mud-flow particle snapshots: foot of each particle's column, x and y in "
+                                 "the CRS, z ground elevation (m); shown from start_time to end_time, "
+                                 "2000-01-01T00:00:00Z being the release",
+                                 nullptr};
+  OGRLayer* layer = dataset.CreateLayer("particles", &srs, wkbPoint25D, const_cast<char**>(options));
+  if (layer == nullptr) gdal_failure(path, "creating the layer");
+  for (const Field& field : kFields) {
+    OGRFieldDefn definition(field.name, field.type);
+    definition.SetAlternativeName(field.alias);
+    check(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
+  }
+  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) gdal_failure(path, "setting the metadata");
+  return *layer;
+}
+
+// Sets a DateTime field to the epoch + `seconds` (s), to the millisecond, in UTC.
+void set_time(OGRFeature& feature, const char* field, double seconds) {
+  const long long milliseconds = std::llround(seconds * 1000.0);
+  const std::time_t whole = kEpochSeconds + static_cast<std::time_t>(milliseconds / 1000);
+  std::tm utc{};
+  gmtime_r(&whole, &utc);
+  const float second = static_cast<float>(utc.tm_sec) + static_cast<float>(milliseconds % 1000) / 1000.0f;
+  feature.SetField(feature.GetFieldIndex(field), utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour,
+                   utc.tm_min, second, 100);  // 100: UTC in OGR's time zone flag
+}
+
+// Writes the particles of one snapshot, shown from its time to `shown_until` (s).
+void add_snapshot(OGRLayer& layer, const ParticleSnapshot& snapshot, double shown_until, const std::filesystem::path& path) {
+  const std::size_t count = snapshot.x.size();
+  for (const auto* column : {&snapshot.y, &snapshot.z, &snapshot.depth, &snapshot.speed, &snapshot.mass, &snapshot.radius}) {
+    if (column->size() != count) throw std::logic_error("particle snapshot columns of different lengths");
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    OGRFeature feature(layer.GetLayerDefn());
+    feature.SetField("time_s", snapshot.time);
+    set_time(feature, "start_time", snapshot.time);
+    set_time(feature, "end_time", shown_until);
+    feature.SetField("depth_m", snapshot.depth[i]);
+    feature.SetField("speed_m_s", snapshot.speed[i]);
+    feature.SetField("mass_kg", snapshot.mass[i]);
+    feature.SetField("radius_m", snapshot.radius[i]);
+    feature.SetGeometryDirectly(new OGRPoint(snapshot.x[i], snapshot.y[i], snapshot.z[i]));
+    check(layer.CreateFeature(&feature), path, "writing a particle");
+  }
+}
+
+void remove_quietly(const std::filesystem::path& path) {
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+}
+
+// "0.1" for a class limit, as QGIS labels it.
+std::string limit_text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+}  // namespace
+
+void write_particle_snapshots(const std::filesystem::path& path, const std::vector<ParticleSnapshot>& snapshots,
+                              double interval, const std::string& crs_wkt) {
+  if (!(interval > kEndGap)) throw std::invalid_argument("particle snapshots need an interval > 0.001 s");
+  ensure_gdal_ready();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+  if (driver == nullptr) throw std::runtime_error("cannot write " + path.string() + ": GDAL has no GPKG driver");
+  std::error_code error;
+  std::filesystem::remove(path, error);  // SQLite would open an existing file instead of replacing it
+  if (error) throw std::runtime_error("cannot replace " + path.string() + ": " + error.message());
+
+  CPLErrorReset();
+  GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  if (!dataset) gdal_failure(path, "creating the GeoPackage");
+  CPLErrorReset();  // a temporary name's extension other than .gpkg is only a warning
+  try {
+    OGRLayer& layer = create_layer(*dataset, crs_wkt, path);
+    check(dataset->StartTransaction(), path, "starting the transaction");
+    for (std::size_t k = 0; k < snapshots.size(); ++k) {
+      const double next = k + 1 < snapshots.size() ? snapshots[k + 1].time : snapshots[k].time + interval;
+      add_snapshot(layer, snapshots[k], std::max(snapshots[k].time, next - kEndGap), path);
+    }
+    check(dataset->CommitTransaction(), path, "committing the features");
+    dataset.reset();  // closes the file; a failed close shows in the error state only
+    if (CPLGetLastErrorType() == CE_Failure) gdal_failure(path, "closing the GeoPackage");
+  } catch (...) {
+    dataset.reset();
+    remove_quietly(path);
+    throw;
+  }
+}
+
+std::string particle_style() {
+  std::ostringstream qml;
+  qml << "<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>\n"
+      << "<qgis version=\"3.22.16-Białowieża\" styleCategories=\"Symbology|Fields|Temporal\">\n"
+      << "  <temporal enabled=\"1\" mode=\"2\" startField=\"start_time\" endField=\"end_time\" startExpression=\"\" "
+         "endExpression=\"\" durationField=\"\" durationUnit=\"s\" fixedDuration=\"0\" accumulate=\"0\" limitMode=\"0\">\n"
+      << "    <fixedRange>\n      <start></start>\n      <end></end>\n    </fixedRange>\n  </temporal>\n"
+      << "  <renderer-v2 type=\"graduatedSymbol\" attr=\"depth_m\" graduatedMethod=\"GraduatedColor\" symbollevels=\"0\" "
+         "enableorderby=\"0\" forceraster=\"0\" referencescale=\"-1\">\n    <ranges>\n";
+  for (std::size_t k = 0; k < kDepthColours.size(); ++k) {
+    const std::string lower = k == 0 ? "0" : limit_text(kDepthLimits[k - 1]);
+    const std::string upper = k < kDepthLimits.size() ? limit_text(kDepthLimits[k]) : "inf";
+    const std::string label = k < kDepthLimits.size() ? lower + " - " + upper + " m" : "&gt; " + lower + " m";
+    qml << "      <range symbol=\"" << k << "\" label=\"" << label << "\" lower=\"" << lower << "\" upper=\"" << upper
+        << "\" render=\"true\"/>\n";
+  }
+  qml << "    </ranges>\n    <symbols>\n";
+  for (std::size_t k = 0; k < kDepthColours.size(); ++k) {
+    qml << "      <symbol type=\"marker\" name=\"" << k << "\" alpha=\"1\" clip_to_extent=\"1\" force_rhr=\"0\">\n"
+        << "        <layer class=\"SimpleMarker\" enabled=\"1\" locked=\"0\" pass=\"0\">\n"
+        << "          <prop k=\"name\" v=\"circle\"/>\n"
+        << "          <prop k=\"color\" v=\"" << kDepthColours[k] << ",255\"/>\n"
+        << "          <prop k=\"outline_style\" v=\"no\"/>\n"
+        << "          <prop k=\"size\" v=\"1.6\"/>\n"
+        << "          <prop k=\"size_unit\" v=\"MM\"/>\n"
+        << "        </layer>\n      </symbol>\n";
+  }
+  qml << "    </symbols>\n  </renderer-v2>\n  <aliases>\n";
+  for (std::size_t i = 0; i < kFields.size(); ++i) {
+    qml << "    <alias field=\"" << kFields[i].name << "\" index=\"" << i + 1 << "\" name=\"" << kFields[i].alias << "\"/>\n";
+  }
+  qml << "  </aliases>\n  <layerGeometryType>0</layerGeometryType>\n</qgis>\n";
+  return qml.str();
+}
+
+void add_particle_snapshots(LayerWriter& writer, const std::vector<ParticleSnapshot>& snapshots, double interval,
+                            const std::string& crs_wkt) {
+  write_particle_snapshots(writer.temporary_path("particles.gpkg"), snapshots, interval, crs_wkt);
+  const std::string style = particle_style();
+  std::ofstream qml(writer.temporary_path("particles.qml"), std::ios::binary);
+  qml.write(style.data(), static_cast<std::streamsize>(style.size()));
+  qml.close();
+  if (!qml) throw std::runtime_error("cannot write " + (writer.folder() / "particles.qml").string());
+}
+
+}  // namespace talus::gis

@@ -1,0 +1,75 @@
+// The state of each mud column from its neighbours (paper 4.1, state equation (1) applied through
+// the column; docs/mudflow.md "State equation"): the SPH sum of the masses over the horizontal
+// plane is the column's areal density sigma (kg/m2), its flow thickness normal to the ground is
+// h = sigma cos(theta) / rho0 and its basal pressure P = rho0 g cos(theta) h (the stiff limit of
+// P = k (rho - rho0) integrated over the depth is hydrostatic).
+//
+// Smoothing radius. A column alone has the depth of its own kernel, m W(0, R) / rho0 = 0.39 of the
+// depth it was created with (R = 2.4 spacings), whatever the resolution: with a fixed radius a
+// thinning front cannot get thinner than that, moves as a bore and lags (shallow-water SPH uses
+// a radius that follows the density: Rodriguez-Paz & Bonet 2005, Vacondio et al. 2012). So each
+// particle sums with a smoothing radius R_s = 2.4 sqrt(m / sigma) from its latest density (its
+// spacing), never below its size's support radius R and at most kLargestSmoothingGrowth R.
+//
+// Pairs. i and j interact when r < max(R_s,i, R_s,j), with the kernel averaged over both radii,
+// W_ij = (W(r, R_s,i) + W(r, R_s,j)) / 2, so pair forces are equal and opposite. Each particle
+// searches its own reach Q_i = max(R_s,i, grid bin size); a pair only the wider particle reaches
+// is handed to the other by add_handed_pairs.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "talus/mudflow/neighbour_grid.hpp"
+#include "talus/mudflow/particle_set.hpp"
+
+namespace talus {
+
+// R_s <= this x R: a column can thin to 0.39 / 4^2 = 2.4% of its creation depth (-).
+inline constexpr double kLargestSmoothingGrowth = 4.0;
+
+// One neighbour j of a particle i, with the pair's kernel gradient factor so the force pass
+// need not evaluate the kernel again: grad_i W_ij = gradient_factor x (x_i - x_j, y_i - y_j).
+struct NeighbourPair {
+  std::uint32_t index = 0;
+  double gradient_factor = 0;  // (dW/dr(r, R_s,i) + dW/dr(r, R_s,j)) / (2 r) (1/m4), <= 0
+};
+using NeighbourList = std::vector<NeighbourPair>;
+
+// A pair particle i found that particle `index` cannot reach: the contribution i makes to it.
+struct HandedPair {
+  std::uint32_t index = 0;
+  double kernel = 0;           // W_ij (1/m2)
+  double gradient_factor = 0;  // as in NeighbourPair (1/m4)
+};
+
+struct ColumnConstants {
+  double mud_density = 2000;  // rho0 (kg/m3)
+  double gravity = 9.81;      // m/s2
+};
+
+// R_s (m) of particle i from its latest density: 2.4 sqrt(m / sigma) within
+// [R, kLargestSmoothingGrowth R]; R where it has no density yet.
+double smoothing_radius(const ParticleSet& particles, std::size_t i);
+
+// The SPH sum of particle i over the pairs it reaches itself (r < Q_i), i's own term
+// m_i W(0, R_s,i) included. Lists the pairs (i excluded) in the grid's order and returns the
+// partial sum sigma (kg/m2). Pairs with a particle flagged in `searching` that does not reach i
+// (r >= Q_j) go to `handed`, for add_handed_pairs.
+double gather_density(const ParticleSet& particles, const NeighbourGrid& grid, std::size_t i,
+                      const std::vector<double>& smoothing, const std::vector<char>& searching,
+                      NeighbourList& neighbours, std::vector<HandedPair>& handed);
+
+// Adds every handed pair to the other particle's list and sum, serially in the order of the
+// listed particles, so the result does not depend on the thread count.
+void add_handed_pairs(const ParticleSet& particles, const std::vector<std::uint32_t>& list,
+                      const std::vector<std::vector<HandedPair>>& handed, std::vector<NeighbourList>& neighbours,
+                      std::vector<double>& sigma);
+
+// Sets i's density, depth h = sigma cos(theta) / rho0 and basal pressure rho0 g cos(theta) h from
+// its sum sigma and cos_slope = cos(theta) at its foot.
+void set_column_state(ParticleSet& particles, std::size_t i, double sigma, double cos_slope,
+                      const ColumnConstants& constants);
+
+}  // namespace talus

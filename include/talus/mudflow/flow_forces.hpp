@@ -1,0 +1,37 @@
+// The forces inside the mud and gravity (paper 4.1; docs/mudflow.md "Forces"), per unit mass of
+// one column, in the ground's tangent plane:
+// - pressure, from the gradient of the depth-integrated pressure in the symmetric SPH form, which
+//   conserves momentum: a_i = - sum_j m_j (Pi_i / sigma_i^2 + Pi_j / sigma_j^2) grad_i W_ij with
+//   Pi = rho0 g cos(theta) h^2 / (2 cos(theta)) = g cos^2(theta) sigma^2 / (2 rho0) (N/m), the
+//   depth-integrated pressure per unit length of slope spread over the horizontal;
+// - the paper's viscous internal friction, as the pairwise Morris et al. (1997) viscosity with
+//   kinematic viscosity nu: a_i = sum_j m_j nu (sigma_i + sigma_j) / (sigma_i sigma_j)
+//   (r_ij . grad_i W_ij) / (r_ij^2 + eps^2) (v_i - v_j), equal and opposite between pairs;
+// - gravity (0, 0, -g).
+// The sum is projected onto the tangent plane at the particle's foot: projecting a horizontal
+// gradient onto the plane gives the surface gradient, so on a plane of slope theta the pressure
+// term is -g cos(theta) dh/ds (Savage & Hutter 1989; Faccanoni & Mangeney 2012).
+#pragma once
+
+#include <cstddef>
+
+#include <Eigen/Core>
+
+#include "talus/mudflow/flow_density.hpp"
+#include "talus/mudflow/particle_set.hpp"
+#include "talus/mudflow/surface_following.hpp"
+
+namespace talus {
+
+struct FlowForceConstants {
+  double mud_density = 2000;       // rho0 (kg/m3)
+  double gravity = 9.81;           // m/s2
+  double internal_viscosity = 0.5; // nu (m2/s)
+};
+
+// Pressure, internal friction and gravity on particle i (m/s2), tangent to the ground at its
+// foot, from its neighbour list (compute_density) and every particle's foot normal.
+Eigen::Vector3d flow_acceleration(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours,
+                                  const FootNormals& normals, const FlowForceConstants& constants);
+
+}  // namespace talus

@@ -1,0 +1,35 @@
+// Release of the mud (issue 5, DESIGN.md section 3 --release): each release cell's column of
+// depth d (m) becomes particles of the chosen spacing, laid on a square lattice inside the cell
+// and jittered by counter-based random numbers of (seed, cell), so the same seed gives the same
+// particles whatever the thread count. A release point releases one DEM cell around it.
+// The depth is that of a vertical column: a cell releases rho0 d A (kg), A the cell area (m2).
+#pragma once
+
+#include <cstdint>
+
+#include "talus/core/release.hpp"
+#include "talus/ground/ground_model.hpp"
+#include "talus/mudflow/particle_set.hpp"
+
+namespace talus {
+
+struct ReleaseLayout {
+  double spacing = 2.5;          // m: particle spacing (the particle size)
+  double mud_density = 2000;     // kg/m3
+  double jitter = 0.25;          // fraction of the spacing by which places are shifted at random (-), in [0, 1]
+  std::uint64_t seed = 1;
+};
+
+// Particles at rest for the release, in cell index order, then the points in their order.
+// Each released cell (depth > 0, valid DEM node) gets n_x x n_y lattice places, n = max(1,
+// round(cell side / spacing)) per axis, each shifted by up to +-jitter / 2 of the lattice step
+// per axis with CounterRandom(seed, cell index, place index); a place off the ground surface
+// falls back to its lattice point and is dropped if that is off too; the cell's mass rho0 d A
+// is shared equally by its places. Support radius: kSupportPerSpacing x sqrt(step_x step_y).
+// A point with depth > 0 is a cell-sized square centred on it (random source: cell count +
+// point index). Masses sum to rho0 x the released volume up to rounding (cells outside the
+// ground model's valid area release nothing). release.depth must be on the DEM grid (or
+// empty); throws GridMismatch otherwise and InputError for a layout out of range.
+ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& release, const ReleaseLayout& layout);
+
+}  // namespace talus

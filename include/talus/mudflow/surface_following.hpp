@@ -1,0 +1,58 @@
+// Contact of the mud columns with the bilinear ground (paper 2.2 and 4.1, DESIGN.md section 2
+// "contact ... against the ground model"; docs/mudflow.md "Ground contact"): every particle's foot
+// stays on the surface, its velocity in the surface's tangent plane, and a particle that leaves
+// the ground model's valid area is reported so the caller can count it as outflow.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "talus/ground/ground_model.hpp"
+#include "talus/mudflow/particle_set.hpp"
+
+namespace talus {
+
+// The unit upward normal of the ground at each particle's foot, kept as structure of arrays;
+// z is cos(theta), theta the local slope angle.
+struct FootNormals {
+  std::vector<double> x, y, z;
+
+  void resize(std::size_t count) {
+    x.resize(count);
+    y.resize(count);
+    z.resize(count, 1.0);
+  }
+  Eigen::Vector3d at(std::size_t i) const { return {x[i], y[i], z[i]}; }
+};
+
+// Unit upward normal of the bilinear surface in one node square.
+Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square);
+
+// The part of v in the plane of unit normal n.
+inline Eigen::Vector3d tangent_part(const Eigen::Vector3d& v, const Eigen::Vector3d& n) { return v - v.dot(n) * n; }
+
+// v turned into the plane of unit normal n with its length kept: a particle that follows a
+// curved surface keeps its kinetic energy (the ground's normal reaction does no work).
+Eigen::Vector3d turned_into_plane(const Eigen::Vector3d& v, const Eigen::Vector3d& n);
+
+// Puts particle i's foot on the ground under (x, y): z from the surface, the normal stored in
+// `normals`, the velocity turned into the tangent plane. (x, y) must lie in the valid area.
+void place_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, FootNormals& normals);
+
+// Moves particle i for `duration` (s) with its horizontal velocity, then places it on the ground
+// there. Returns false, and leaves the particle where it was, when the new place is outside the
+// ground model's valid area (or not a number).
+bool drift_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, double duration,
+                     FootNormals& normals);
+
+// Curvature kappa (1/m) of the ground along the unit tangent `direction` at (x, y), positive in
+// hollows: minus the change of the unit normal along the direction per metre of path, from the
+// normals `half_span` (m, horizontal) ahead and behind (one side only where the other leaves the
+// valid area). Bilinear surfaces bend at node lines, so half_span of about half a cell averages
+// a bend over one cell.
+double curvature_along(const GroundModel& ground, double x, double y, const Eigen::Vector3d& direction,
+                       double half_span);
+
+}  // namespace talus

@@ -1,0 +1,64 @@
+// Pressure, internal viscous friction and gravity on the mud columns (paper 4.1; docs/mudflow.md
+// "Forces").
+#include "talus/mudflow/flow_forces.hpp"
+
+#include "talus/mudflow/smoothing_kernel.hpp"
+
+namespace talus {
+namespace {
+
+// eps^2 of the viscous term, per squared particle spacing (the pair's mean, so the pair term stays
+// symmetric): keeps it finite when two feet meet (Morris et al. 1997 use 0.01 h^2).
+constexpr double kViscousSofteningPerSpacing2 = 0.01;
+
+}  // namespace
+
+// Pi_i / sigma_i^2 = g cos^2(theta_i) / (2 rho0) (m3/kg s2): with Pi proportional to sigma^2 the
+// pressure term needs only the neighbours' positions and slopes, never their densities, so it
+// is exact for particles whose neighbours are between their own steps.
+Eigen::Vector3d flow_acceleration(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours,
+                                  const FootNormals& normals, const FlowForceConstants& constants) {
+  const double xi = particles.x[i], yi = particles.y[i];
+  const double vxi = particles.vx[i], vyi = particles.vy[i], vzi = particles.vz[i];
+  const double sigma_i = particles.density[i];
+  const double cos_i = normals.z[i];
+  const double pressure_scale = constants.gravity / (2.0 * constants.mud_density);
+  const double radius_i = particles.radius[i];
+  const double softening_scale = kViscousSofteningPerSpacing2 / (4.0 * kSupportPerSpacing * kSupportPerSpacing);
+  const double nu = constants.internal_viscosity;
+  const double* x = particles.x.data();
+  const double* y = particles.y.data();
+  const double* vx = particles.vx.data();
+  const double* vy = particles.vy.data();
+  const double* vz = particles.vz.data();
+  const double* mass = particles.mass.data();
+  const double* sigma = particles.density.data();
+  const double* radius = particles.radius.data();
+  const double* cos_slope = normals.z.data();
+
+  double px = 0, py = 0;            // pressure (m/s2, horizontal)
+  double fx = 0, fy = 0, fz = 0;    // viscosity (m/s2)
+  for (const NeighbourPair& pair : neighbours) {
+    const std::size_t j = pair.index;
+    const double dx = xi - x[j], dy = yi - y[j];
+    const double cos_j = cos_slope[j];
+    const double push = mass[j] * pressure_scale * (cos_i * cos_i + cos_j * cos_j) * pair.gradient_factor;
+    px -= push * dx;
+    py -= push * dy;
+    if (nu > 0.0) {
+      const double r2 = dx * dx + dy * dy;
+      const double sigma_j = sigma[j];
+      const double mean_radius = radius_i + radius[j];  // twice the pair's mean support radius (m)
+      const double softening = softening_scale * mean_radius * mean_radius;
+      const double drag = mass[j] * nu * (sigma_i + sigma_j) / (sigma_i * sigma_j) * pair.gradient_factor * r2 /
+                          (r2 + softening);
+      fx += drag * (vxi - vx[j]);
+      fy += drag * (vyi - vy[j]);
+      fz += drag * (vzi - vz[j]);
+    }
+  }
+  const Eigen::Vector3d total(px + fx, py + fy, fz - constants.gravity);
+  return tangent_part(total, normals.at(i));
+}
+
+}  // namespace talus

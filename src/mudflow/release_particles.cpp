@@ -1,0 +1,107 @@
+// Release of the mud as particles (issue 5, DESIGN.md section 3 --release; paper 4.1).
+#include "talus/mudflow/release_particles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "talus/core/counter_random.hpp"
+#include "talus/core/errors.hpp"
+#include "talus/mudflow/smoothing_kernel.hpp"
+
+namespace talus {
+namespace {
+
+// The lattice of one cell-sized column: places per axis and their steps (m).
+struct CellLattice {
+  int columns = 1, rows = 1;
+  double step_x = 0, step_y = 0;  // m
+  double support_radius = 0;      // m
+  double cell_area = 0;           // m2
+};
+
+// n = max(1, round(cell side / spacing)) places per axis; kernel support from the lattice step.
+CellLattice lattice_for(const GridSpec& spec, double spacing) {
+  CellLattice lattice;
+  lattice.columns = std::max(1, static_cast<int>(std::lround(spec.cell_width() / spacing)));
+  lattice.rows = std::max(1, static_cast<int>(std::lround(spec.cell_height() / spacing)));
+  lattice.step_x = spec.cell_width() / lattice.columns;
+  lattice.step_y = spec.cell_height() / lattice.rows;
+  lattice.support_radius = kSupportPerSpacing * std::sqrt(lattice.step_x * lattice.step_y);
+  lattice.cell_area = spec.cell_area();
+  return lattice;
+}
+
+// Adds the particles of one cell-sized column of depth d (m) centred on (cx, cy) (m): mass rho0
+// d A shared by the lattice places on the ground surface, at rest on it.
+void release_column(const GroundModel& ground, const ReleaseLayout& layout, const CellLattice& lattice, double cx,
+                    double cy, double depth, std::uint64_t source, ParticleSet& particles) {
+  const double width = lattice.step_x * lattice.columns, height = lattice.step_y * lattice.rows;  // m
+  std::vector<Eigen::Vector2d> places;
+  places.reserve(static_cast<std::size_t>(lattice.columns) * static_cast<std::size_t>(lattice.rows));
+  for (int row = 0; row < lattice.rows; ++row) {
+    for (int col = 0; col < lattice.columns; ++col) {
+      const std::uint64_t place = static_cast<std::uint64_t>(row) * static_cast<std::uint64_t>(lattice.columns) +
+                                  static_cast<std::uint64_t>(col);
+      CounterRandom random(layout.seed, source, place);
+      const Eigen::Vector2d lattice_point(cx - 0.5 * width + (col + 0.5) * lattice.step_x,
+                                          cy + 0.5 * height - (row + 0.5) * lattice.step_y);
+      const double shift_x = random.uniform(-0.5, 0.5) * layout.jitter * lattice.step_x;
+      const double shift_y = random.uniform(-0.5, 0.5) * layout.jitter * lattice.step_y;
+      const Eigen::Vector2d jittered = lattice_point + Eigen::Vector2d(shift_x, shift_y);
+      if (ground.contains(jittered.x(), jittered.y())) {
+        places.push_back(jittered);
+      } else if (ground.contains(lattice_point.x(), lattice_point.y())) {
+        places.push_back(lattice_point);
+      }
+    }
+  }
+  if (places.empty()) return;
+  const double column_mass = layout.mud_density * depth * lattice.cell_area;  // kg
+  const double particle_mass = column_mass / static_cast<double>(places.size());
+  for (const Eigen::Vector2d& p : places) {
+    particles.add(particle_mass, {p.x(), p.y(), ground.elevation(p.x(), p.y())}, Eigen::Vector3d::Zero(),
+                  lattice.support_radius);
+  }
+}
+
+// Refuses layouts no release can be built from (InputError, exit code 2).
+void check_layout(const ReleaseLayout& layout) {
+  if (!(layout.spacing > 0.0 && std::isfinite(layout.spacing))) {
+    throw InputError("mud flow: particle spacing must be > 0 m");
+  }
+  if (!(layout.mud_density > 0.0 && std::isfinite(layout.mud_density))) {
+    throw InputError("mud flow: mud density must be > 0 kg/m3");
+  }
+  if (!(layout.jitter >= 0.0 && layout.jitter <= 1.0)) throw InputError("mud flow: release jitter must be in [0, 1]");
+}
+
+}  // namespace
+
+// Cells in index order, then points (DESIGN.md section 3 --release), each a column of rho0 d A.
+ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& release, const ReleaseLayout& layout) {
+  check_layout(layout);
+  const GridSpec& spec = ground.spec();
+  const Grid<double>& dem = ground.elevation_grid();
+  const CellLattice lattice = lattice_for(spec, layout.spacing);
+  ParticleSet particles;
+  if (release.depth.size() > 0) {
+    require_same_grid(release.depth.spec(), spec, "mud-flow release depth and DEM");
+    for (int row = 0; row < spec.height; ++row) {
+      for (int col = 0; col < spec.width; ++col) {
+        const std::size_t cell = dem.index(col, row);
+        const double depth = static_cast<double>(release.depth[cell]);
+        if (!(depth > 0.0) || !dem.is_valid(cell)) continue;
+        release_column(ground, layout, lattice, spec.node_x(col), spec.node_y(row), depth, cell, particles);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < release.points.size(); ++k) {
+    const ReleasePoint& point = release.points[k];
+    if (!(point.depth > 0.0)) continue;
+    release_column(ground, layout, lattice, point.x, point.y, point.depth, spec.cell_count() + k, particles);
+  }
+  return particles;
+}
+
+}  // namespace talus

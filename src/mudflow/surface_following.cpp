@@ -1,0 +1,69 @@
+// Keeping the mud columns on the bilinear ground (paper 2.2, 4.1; docs/mudflow.md "Ground contact").
+#include "talus/mudflow/surface_following.hpp"
+
+#include <cmath>
+
+namespace talus {
+
+// The normal of z = f(x, y) is (-f_x, -f_y, 1) / |(-f_x, -f_y, 1)| (paper 2.2, fig. 3a).
+Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square) {
+  const Eigen::Vector2d gradient = ground.slope(square);
+  return Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized();
+}
+
+Eigen::Vector3d turned_into_plane(const Eigen::Vector3d& v, const Eigen::Vector3d& n) {
+  const Eigen::Vector3d tangent = tangent_part(v, n);
+  const double length = tangent.norm();
+  if (!(length > 0.0)) return tangent;
+  return tangent * (v.norm() / length);
+}
+
+void place_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, FootNormals& normals) {
+  const NodeSquare square = ground.locate(particles.x[i], particles.y[i]);
+  particles.z[i] = ground.elevation(square);
+  const Eigen::Vector3d n = ground_normal(ground, square);
+  normals.x[i] = n.x();
+  normals.y[i] = n.y();
+  normals.z[i] = n.z();
+  const Eigen::Vector3d v = turned_into_plane(particles.velocity(i), n);
+  particles.vx[i] = v.x();
+  particles.vy[i] = v.y();
+  particles.vz[i] = v.z();
+}
+
+// The foot moves with the horizontal part of the velocity; the vertical part is the ground's
+// (the velocity is tangent, so this is the motion along the surface to first order).
+bool drift_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, double duration,
+                     FootNormals& normals) {
+  const double x = particles.x[i] + particles.vx[i] * duration;
+  const double y = particles.y[i] + particles.vy[i] * duration;
+  if (!ground.contains(x, y)) return false;
+  particles.x[i] = x;
+  particles.y[i] = y;
+  place_on_ground(ground, particles, i, normals);
+  return true;
+}
+
+double curvature_along(const GroundModel& ground, double x, double y, const Eigen::Vector3d& direction,
+                       double half_span) {
+  const double horizontal = std::sqrt(direction.x() * direction.x() + direction.y() * direction.y());
+  if (!(horizontal > 0.0)) return 0.0;
+  const double ex = direction.x() / horizontal * half_span, ey = direction.y() / horizontal * half_span;
+  double ahead_x = x + ex, ahead_y = y + ey, behind_x = x - ex, behind_y = y - ey;
+  if (!ground.contains(ahead_x, ahead_y)) {
+    ahead_x = x;
+    ahead_y = y;
+  }
+  if (!ground.contains(behind_x, behind_y)) {
+    behind_x = x;
+    behind_y = y;
+  }
+  const NodeSquare ahead = ground.locate(ahead_x, ahead_y), behind = ground.locate(behind_x, behind_y);
+  const Eigen::Vector3d a(ahead_x, ahead_y, ground.elevation(ahead));
+  const Eigen::Vector3d b(behind_x, behind_y, ground.elevation(behind));
+  const double path = (a - b).norm();
+  if (!(path > 0.0)) return 0.0;
+  return -(ground_normal(ground, ahead) - ground_normal(ground, behind)).dot(direction) / path;
+}
+
+}  // namespace talus

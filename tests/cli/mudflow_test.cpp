@@ -1,0 +1,292 @@
+// `talus mudflow` end to end (issue 5, "Done when"): every layer of the contract
+// (../shared/tools/check_layers.py) on the sample scene and on Mount St Helens, styled in QGIS;
+// run.json's counts and the volume balance; the same layers at 1 and 2 threads; entrainment
+// from an erodible raster; particle snapshots; bad inputs refused with one line and nothing
+// written.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "raster_fixtures.hpp"
+#include "run_talus.hpp"
+#include "test_paths.hpp"
+
+namespace talus {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kLayers[] = {"flow_depth_max", "velocity_max", "pressure_max", "deposit_depth", "arrival_time"};
+
+// The sample scene with 5 m particles (a run of one to a few seconds).
+std::vector<std::string> sample_arguments(const fs::path& out, const std::string& threads) {
+  const auto sample = test::source_dir() / "sample_dem";
+  return {"mudflow", "--dem", (sample / "dem.tif").string(), "--lithology", (sample / "lithology.tif").string(),
+          "--vegetation", (sample / "vegetation.tif").string(), "--release", (sample / "mudflow_release.gpkg").string(),
+          "--out", out.string(), "--particle-size", "5", "--threads", threads};
+}
+
+std::vector<std::string> with(std::vector<std::string> arguments, const std::vector<std::string>& more) {
+  arguments.insert(arguments.end(), more.begin(), more.end());
+  return arguments;
+}
+
+int run_python(const std::string& arguments) { return std::system(("/usr/bin/python3 " + arguments).c_str()); }
+
+int check_layers(const fs::path& out, const fs::path& dem) {
+  return run_python((test::shared_dir() / "tools/check_layers.py").string() + " mudflow " + out.string() + " " + dem.string());
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+// Sum of a layer's valid values times the cell area (m3 for depth layers).
+double layer_volume(const fs::path& layer, double cell_area) {
+  double sum = 0;
+  for (const float value : test::read_band(layer)) sum += value > 0 ? value : 0;
+  return sum * cell_area;
+}
+
+constexpr double kSampleCellArea = 25.0;  // m2: 5 m cells
+
+// (deposited + outflow) / (released + entrained) - 1 from run.json.
+double volume_balance(const nlohmann::json& record) {
+  const auto& v = record["volumes_m3"];
+  return (v["deposited"].get<double>() + v["outflow"].get<double>()) /
+             (v["released"].get<double>() + v["entrained"].get<double>()) -
+         1.0;
+}
+
+class SampleMudflow : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = test::fresh_folder("mudflow_sample");
+    result_ = test::run_talus(with(sample_arguments(root_ / "out", "1"), {"--snapshots", "10"}), root_);
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+  static fs::path root_;
+  static test::ProgramResult result_;
+};
+fs::path SampleMudflow::root_;
+test::ProgramResult SampleMudflow::result_;
+
+TEST_F(SampleMudflow, WritesEveryLayerOfTheContract) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  EXPECT_EQ(check_layers(root_ / "out", test::source_dir() / "sample_dem/dem.tif"), 0);
+  EXPECT_NE(result_.out.find("Layers written to"), std::string::npos);
+  EXPECT_NE(result_.err.find("Progress: 100%"), std::string::npos);
+  EXPECT_FALSE(fs::exists(root_ / "out" / "erosion_depth.tif"));  // no --erodible
+  for (const auto& entry : fs::directory_iterator(root_ / "out")) {
+    EXPECT_NE(entry.path().filename().string().front(), '.') << "temporary file left: " << entry.path();
+  }
+  // The flow leaves the release: something deposits and some cell is reached after the start.
+  EXPECT_GT(layer_volume(root_ / "out" / "deposit_depth.tif", kSampleCellArea), 0.0);
+  const auto arrival = test::read_band(root_ / "out" / "arrival_time.tif");
+  EXPECT_GT(*std::max_element(arrival.begin(), arrival.end()), 0.0f);
+}
+
+TEST_F(SampleMudflow, RecordsCountsAndConservesVolume) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  const nlohmann::json record = read_json(root_ / "out" / "run.json");
+  for (const char* role : {"dem", "lithology", "vegetation", "release"}) {
+    EXPECT_EQ(record["inputs"][role]["sha256"].get<std::string>().size(), 64u) << role;
+  }
+  for (const char* section :
+       {"run", "mud", "adaptivity", "time_steps", "contact", "rheology", "deposition", "entrainment", "outputs"}) {
+    EXPECT_TRUE(record["parameters"].contains(section)) << section;
+  }
+  EXPECT_EQ(record["parameters"]["mud"]["particle_size"], 5.0);
+  EXPECT_EQ(record["parameters"]["rheology"]["rheology"], "voellmy");
+  EXPECT_EQ(record["threads"], 1);
+  const auto& counts = record["counts"];
+  EXPECT_GT(counts["particles"]["initial"].get<int>(), 0);
+  EXPECT_GE(counts["particles"]["peak"].get<int>(), counts["particles"]["initial"].get<int>());
+  EXPECT_GT(counts["particle_steps"].get<double>(), 0.0);
+  EXPECT_GT(counts["coarse_steps"].get<double>(), 0.0);
+  for (const char* key : {"splits", "merges", "guard_retries"}) EXPECT_TRUE(counts.contains(key)) << key;
+  EXPECT_TRUE(record["end"].contains("reason"));
+  // The history: one point at the start and after every coarse step, its last at the end.
+  const auto& history = record["history"];
+  ASSERT_EQ(history["time_s"].size(), counts["coarse_steps"].get<std::size_t>() + 1);
+  EXPECT_NEAR(history["time_s"].back().get<double>(), record["end"]["simulated_time_s"].get<double>(), 1e-9);
+  EXPECT_EQ(history["kinetic_energy_j"].size(), history["time_s"].size());
+  EXPECT_LE(record["conservation"]["adaptivity_mass_change"].get<double>(), 1e-12);  // issue 5: 1e-12
+  for (const char* phase : {"read_inputs", "simulate", "write_layers"}) EXPECT_TRUE(record["timings_s"].contains(phase));
+  // The release polygon: 8025 m2 of 5 m cells at 1.8 m (Float32 depths: 0.1 m3).
+  EXPECT_NEAR(record["volumes_m3"]["released"].get<double>(), 8025.0 * 1.8, 0.1);
+  // Issue 5: deposited volume equals released plus entrained volume within 2 %.
+  EXPECT_NEAR(volume_balance(record), 0.0, 0.02);
+  // The deposit layer holds the volume left on the DEM as depths normal to the ground, so depth
+  // x cell area sums to that volume times the cosines of the slopes under it: at most the
+  // volume (Float32 cells: 1e-4 relative), at least 0.7 of it (mud deposits on slopes under 45°).
+  const double deposit_ratio = layer_volume(root_ / "out" / "deposit_depth.tif", kSampleCellArea) /
+                               record["volumes_m3"]["deposited"].get<double>();
+  EXPECT_LE(deposit_ratio, 1.0 + 1e-4);
+  EXPECT_GE(deposit_ratio, 0.7);
+}
+
+TEST_F(SampleMudflow, LayersOpenStyledInQgis) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  std::string arguments = (test::source_dir() / "tests/gis/qgis/check_layer_in_qgis.py").string() + " EPSG:31287";
+  const std::map<std::string, std::string> descriptions = {{"flow_depth_max", "Maximum flow depth"},
+                                                           {"velocity_max", "Maximum velocity"},
+                                                           {"pressure_max", "Maximum impact pressure"},
+                                                           {"deposit_depth", "Deposit depth"},
+                                                           {"arrival_time", "Arrival time of the flow"}};
+  for (const auto& [layer, description] : descriptions) {
+    arguments += " " + (root_ / "out" / (layer + ".tif")).string() + " '" + description + "'";
+  }
+  EXPECT_EQ(run_python(arguments), 0);
+}
+
+TEST_F(SampleMudflow, SnapshotsHoldTheParticlesWithTheirTime) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  const nlohmann::json record = read_json(root_ / "out" / "run.json");
+  EXPECT_TRUE(fs::exists(root_ / "out" / "particles.qml"));
+  GDALAllRegister();
+  GDALDatasetUniquePtr dataset(GDALDataset::Open((root_ / "out" / "particles.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  ASSERT_TRUE(dataset);
+  OGRLayer* layer = dataset->GetLayerByName("particles");
+  ASSERT_NE(layer, nullptr);
+  ASSERT_GE(layer->GetLayerDefn()->GetFieldIndex("time_s"), 0);
+  std::map<double, double> mass_at;  // kg per snapshot time (s)
+  for (auto& feature : *layer) mass_at[feature->GetFieldAsDouble("time_s")] += feature->GetFieldAsDouble("mass_kg");
+  // A snapshot at release, one every 10 s, and one at the end.
+  const double end = record["end"]["simulated_time_s"].get<double>();
+  ASSERT_FALSE(mass_at.empty());
+  EXPECT_EQ(mass_at.begin()->first, 0.0);
+  EXPECT_NEAR(mass_at.rbegin()->first, end, 1e-9);
+  EXPECT_EQ(static_cast<double>(mass_at.size()), std::ceil(end / 10.0) + 1.0);
+  EXPECT_EQ(record["counts"]["snapshots"].get<std::size_t>(), mass_at.size());
+  // At release the particles carry the released mud: rho0 x released volume (1e-9 relative).
+  const double released_mass = 2000.0 * record["volumes_m3"]["released"].get<double>();
+  EXPECT_NEAR(mass_at.begin()->second / released_mass, 1.0, 1e-9);
+}
+
+// Issue 5: same seed, identical layers at 1 and 2 threads, bit for bit.
+TEST(MudflowThreads, SameLayersAtOneAndTwoThreads) {
+  const auto root = test::fresh_folder("mudflow_threads");
+  for (const char* threads : {"1", "2"}) {
+    const auto result = test::run_talus(sample_arguments(root / threads, threads), root);
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+  }
+  for (const char* layer : kLayers) {
+    const auto one = test::read_band(root / "1" / (std::string(layer) + ".tif"));
+    const auto two = test::read_band(root / "2" / (std::string(layer) + ".tif"));
+    ASSERT_EQ(one.size(), two.size());
+    EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)), 0) << layer << " differs";
+  }
+}
+
+// 0.5 m of erodible material in the gully: the cells a run without it flowed through.
+TEST(MudflowErosion, EntrainsFromTheErodibleRaster) {
+  const auto root = test::fresh_folder("mudflow_erosion");
+  const auto plain = test::run_talus(sample_arguments(root / "plain", "1"), root);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const auto path = test::read_band(root / "plain" / "flow_depth_max.tif");
+  test::RasterFixture gully;  // the sample DEM's grid
+  gully.width = 260;
+  gully.height = 400;
+  gully.x0 = 255302.0828;
+  gully.y0 = 380605.9942;
+  gully.cell = 5.0;
+  gully.crs = "EPSG:31287";
+  gully.value = [&](int c, int r) { return path[static_cast<std::size_t>(r * 260 + c)] > 0.0f ? 0.5 : 0.0; };
+  test::write_raster(root / "erodible.tif", gully);
+
+  const auto eroding = test::run_talus(
+      with(sample_arguments(root / "eroding", "1"), {"--erodible", (root / "erodible.tif").string()}), root);
+  ASSERT_EQ(eroding.exit_code, 0) << eroding.err;
+  EXPECT_EQ(check_layers(root / "eroding", test::source_dir() / "sample_dem/dem.tif"), 0);
+  ASSERT_TRUE(fs::exists(root / "eroding" / "erosion_depth.tif"));
+  const nlohmann::json record = read_json(root / "eroding" / "run.json");
+  EXPECT_EQ(record["inputs"]["erodible"]["sha256"].get<std::string>().size(), 64u);
+  const double entrained = record["volumes_m3"]["entrained"].get<double>();
+  EXPECT_GT(entrained, 0.0);
+  EXPECT_NEAR(volume_balance(record), 0.0, 0.02);  // issue 5: within 2 %
+  // The erosion layer holds the entrained volume (Float32 cells: 1e-4 relative), never more than
+  // the 0.5 m there was (plus Float32 rounding).
+  EXPECT_NEAR(layer_volume(root / "eroding" / "erosion_depth.tif", kSampleCellArea) / entrained, 1.0, 1e-4);
+  const auto eroded = test::read_band(root / "eroding" / "erosion_depth.tif");
+  EXPECT_LE(*std::max_element(eroded.begin(), eroded.end()), 0.5f + 1e-6f);
+  EXPECT_EQ(run_python((test::source_dir() / "tests/gis/qgis/check_layer_in_qgis.py").string() + " EPSG:31287 " +
+                       (root / "eroding" / "erosion_depth.tif").string() + " 'Eroded depth'"),
+            0);
+}
+
+// Issue 5, "Done when": Mount St Helens 2021 with the landslide depth raster (negative depths)
+// in local coordinates.
+TEST(MudflowStHelens, WritesEveryLayerInLocalCoordinates) {
+  const auto root = test::fresh_folder("mudflow_sthelens");
+  const auto data = test::shared_dir() / "data/sthelens2021";
+  const auto result = test::run_talus({"mudflow", "--dem", (data / "pre_runout_DEM.asc").string(), "--release",
+                                       (data / "landslide_depth.asc").string(), "--crs", "local", "--out",
+                                       (root / "out").string(), "--threads", "1"},
+                                      root);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(check_layers(root / "out", data / "pre_runout_DEM.asc"), 0);
+  const nlohmann::json record = read_json(root / "out" / "run.json");
+  EXPECT_GT(record["volumes_m3"]["released"].get<double>(), 0.0);
+  EXPECT_NEAR(volume_balance(record), 0.0, 0.02);
+  GDALAllRegister();
+  GDALDatasetUniquePtr layer(GDALDataset::Open((root / "out" / "flow_depth_max.tif").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(layer);
+  EXPECT_EQ(layer->GetSpatialRef(), nullptr);  // local coordinates: no CRS
+}
+
+// Bad inputs: exit code 2, one line on stderr naming the problem, nothing written.
+TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
+  const auto root = test::fresh_folder("mudflow_bad");
+  test::write_vector(root / "no_depth.gpkg", "EPSG:31287",
+                     {{"POLYGON((255625 380500,255665 380500,255665 380460,255625 380460,255625 380500))", 0}}, false);
+  std::ofstream(root / "bad_density.toml") << "[mud]\ndensity = 50\n";
+  const auto out = root / "out";
+  const auto sample = sample_arguments(out, "2");
+  struct Case {
+    std::vector<std::string> arguments;
+    std::string message;
+  };
+  auto release_replaced = sample;
+  release_replaced[8] = (root / "no_depth.gpkg").string();
+  auto size_zero = sample;
+  *(std::find(size_zero.begin(), size_zero.end(), "--particle-size") + 1) = "0";
+  auto dem_missing = sample;
+  dem_missing[2] = (root / "missing.tif").string();
+  const std::vector<Case> cases = {
+      {release_replaced, "no_depth.gpkg (release): layer 'release' has no `depth` attribute"},
+      {size_zero, "--particle-size 0: expected a spacing > 0 m"},
+      {with(sample, {"--adaptive", "maybe"}), "--adaptive maybe: use on or off"},
+      {with(sample, {"--rheology", "honey"}), "--rheology honey: use viscous, coulomb, voellmy or bingham"},
+      {with(sample, {"--snapshots", "0"}), "--snapshots 0: expected an interval > 0 s"},
+      {with(sample, {"--duration", "-5"}), "--duration -5: expected a time > 0 s"},
+      {with(sample, {"--scenario", (root / "bad_density.toml").string()}),
+       "bad_density.toml (scenario): [mud] density 50: expected 1000-3000 kg/m3"},
+      {dem_missing, "missing.tif (DEM): file not found"},
+      {with(sample, {"--erodible", (root / "missing_erodible.tif").string()}), "missing_erodible.tif (erodible): file not found"},
+  };
+  for (const Case& c : cases) {
+    const auto result = test::run_talus(c.arguments, root);
+    EXPECT_EQ(result.exit_code, 2) << c.message;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_EQ(result.err.rfind("talus: error: ", 0), 0u) << result.err;
+    EXPECT_NE(result.err.find(c.message), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists(out)) << c.message;
+  }
+}
+
+}  // namespace
+}  // namespace talus

@@ -1,0 +1,233 @@
+// Tests of the pressure-contrast criterion and the 1 -> 4 split (paper 4.2, fig. 8a).
+#include "talus/mudflow/particle_fission.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../../validation/synthetic_ground.hpp"
+#include "talus/mudflow/smoothing_kernel.hpp"
+
+namespace talus {
+namespace {
+
+// A plane z = 500 - 0.2 x + 0.1 y (m) over x in [0, 200] m, y in [-200, 0] m.
+GroundModel plane_ground() {
+  return testing_ground::make_ground(
+      testing_ground::local_spec(41, 41, 5.0), [](double x, double y) { return 500.0 - 0.2 * x + 0.1 * y; },
+      testing_ground::fast_material(0.0, 0.0, 0.5));
+}
+
+double radius_of_spacing(double spacing) { return kSupportPerSpacing * spacing; }
+
+// Areal density (kg/m2) of every particle by the symmetrised SPH sum over all particles.
+void set_sph_density(ParticleSet& particles) {
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    double sum = 0;
+    for (std::size_t j = 0; j < particles.size(); ++j) {
+      const double r = std::hypot(particles.x[i] - particles.x[j], particles.y[i] - particles.y[j]);
+      sum += particles.mass[j] * 0.5 * (kernel_value(r, particles.radius[i]) + kernel_value(r, particles.radius[j]));
+    }
+    particles.density[i] = sum;
+  }
+}
+
+NeighbourGrid binned(const ParticleSet& particles) {
+  NeighbourGrid grid;
+  grid.rebuild(particles, *std::max_element(particles.radius.begin(), particles.radius.end()));
+  return grid;
+}
+
+// A square lattice of columns x columns particles of `spacing` (m) centred on (cx, cy), each of
+// the mass of a 1 m deep column of mud (kg).
+ParticleSet lattice(const GroundModel& ground, int columns, double spacing, double cx, double cy) {
+  ParticleSet particles;
+  const double mass = 1800.0 * spacing * spacing;
+  for (int row = 0; row < columns; ++row) {
+    for (int col = 0; col < columns; ++col) {
+      const double x = cx + (col - 0.5 * (columns - 1)) * spacing, y = cy + (row - 0.5 * (columns - 1)) * spacing;
+      particles.add(mass, {x, y, ground.elevation(x, y)}, Eigen::Vector3d::Zero(), radius_of_spacing(spacing));
+    }
+  }
+  set_sph_density(particles);
+  return particles;
+}
+
+// Sum of |m v| (kg m/s): the scale of momentum errors.
+double momentum_scale(const ParticleSet& particles) {
+  double sum = 0;
+  for (std::size_t i = 0; i < particles.size(); ++i) sum += particles.mass[i] * particles.velocity(i).norm();
+  return sum;
+}
+
+// One flowing particle of spacing 8 m at low pressure next to a deposited one of high pressure:
+// only the flowing one can split, and its contrast is far above 0.5.
+ParticleSet pressure_step_pair(const GroundModel& ground, double spacing) {
+  ParticleSet particles;
+  const double x = 100.3, y = -87.7;
+  const std::size_t parent = particles.add(5000.0, {x, y, ground.elevation(x, y)}, {1.5, -0.7, 0.2},
+                                           radius_of_spacing(spacing));
+  const std::size_t other = particles.add(5000.0, {x + spacing, y, ground.elevation(x + spacing, y)},
+                                          Eigen::Vector3d::Zero(), radius_of_spacing(spacing));
+  particles.state[other] = ParticleState::deposited;
+  set_sph_density(particles);
+  particles.pressure[parent] = 1000.0;
+  particles.pressure[other] = 50000.0;
+  particles.level[parent] = 3;
+  particles.still_time[parent] = 0.25;
+  return particles;
+}
+
+TEST(ParticleFission, PressureContrastIsZeroInAUniformField) {
+  const GroundModel ground = plane_ground();
+  ParticleSet particles = lattice(ground, 11, 5.0, 100.0, -100.0);
+  std::fill(particles.pressure.begin(), particles.pressure.end(), 20000.0);
+  const NeighbourGrid grid = binned(particles);
+  // Interior particle (the centre, index 60): equal pressures give no gradient; tolerance 1e-12.
+  EXPECT_NEAR(pressure_contrast(particles, grid, 60), 0.0, 1e-12);
+}
+
+TEST(ParticleFission, PressureContrastMatchesALinearPressureGradient) {
+  const GroundModel ground = plane_ground();
+  const double spacing = 5.0, base = 20000.0, gx = 300.0, gy = -200.0;  // m, Pa, Pa/m, Pa/m
+  ParticleSet particles = lattice(ground, 15, spacing, 100.0, -100.0);
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    particles.pressure[i] = base + gx * (particles.x[i] - 100.0) + gy * (particles.y[i] + 100.0);
+  }
+  const NeighbourGrid grid = binned(particles);
+  const std::size_t centre = 7 * 15 + 7;
+  const double expected = spacing * std::hypot(gx, gy) / base;  // about 0.09
+  // SPH gradient of a linear field on a lattice, with SPH densities (the plain sum is 5.3% low
+  // here): within 5%.
+  EXPECT_NEAR(pressure_contrast(particles, grid, centre), expected, 0.05 * expected);
+}
+
+TEST(ParticleFission, PressureContrastMatchesALinearPressureGradientAtTheFlowEdge) {
+  const GroundModel ground = plane_ground();
+  const double spacing = 5.0, base = 20000.0, gx = 300.0, gy = -200.0;  // m, Pa, Pa/m, Pa/m
+  ParticleSet particles = lattice(ground, 15, spacing, 100.0, -100.0);
+  const std::size_t edge = 7;  // middle of the first row: neighbours on one side only
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const double dx = particles.x[i] - particles.x[edge], dy = particles.y[i] - particles.y[edge];  // m
+    particles.pressure[i] = base + gx * dx + gy * dy;
+  }
+  const NeighbourGrid grid = binned(particles);
+  const double expected = spacing * std::hypot(gx, gy) / base;
+  // One-sided neighbours (the plain SPH sum is 21% low here): within 5%.
+  EXPECT_NEAR(pressure_contrast(particles, grid, edge), expected, 0.05 * expected);
+}
+
+TEST(ParticleFission, PressureContrastsAreZeroForDepositedParticles) {
+  const GroundModel ground = plane_ground();
+  ParticleSet particles = pressure_step_pair(ground, 8.0);
+  const NeighbourGrid grid = binned(particles);
+  const std::vector<double> contrast = pressure_contrasts(particles, grid);
+  // The flowing particle gets its contrast (exactly the single-particle value), the deposited one 0.
+  EXPECT_EQ(contrast[0], pressure_contrast(particles, grid, 0));
+  EXPECT_GT(contrast[0], 0.5);
+  EXPECT_EQ(contrast[1], 0.0);
+}
+
+TEST(ParticleFission, ChildrenStandOnTheQuartersOfTheParentFootprint) {
+  const GroundModel ground = plane_ground();
+  const double spacing = 8.0;  // m
+  ParticleSet particles = pressure_step_pair(ground, spacing);
+  const ParticleSet before = particles;
+  const NeighbourGrid grid = binned(particles);
+  ASSERT_EQ(split_particles(particles, grid, ground, FissionRule{}), 1u);
+  ASSERT_EQ(particles.size(), 5u);
+  // The parent's slot holds the first child, children 2-4 are appended after the other particle.
+  const std::vector<std::size_t> children{0, 2, 3, 4};
+  const double offsets[4][2] = {{-2.0, -2.0}, {2.0, -2.0}, {-2.0, 2.0}, {2.0, 2.0}};  // m: s / 4
+  for (std::size_t c = 0; c < 4; ++c) {
+    const std::size_t k = children[c];
+    // Positions to 1e-12 m; z on the ground to 1e-12 m; mass, radius, velocity, level, still
+    // time exactly.
+    EXPECT_NEAR(particles.x[k], before.x[0] + offsets[c][0], 1e-12);
+    EXPECT_NEAR(particles.y[k], before.y[0] + offsets[c][1], 1e-12);
+    EXPECT_NEAR(particles.z[k], ground.elevation(particles.x[k], particles.y[k]), 1e-12);
+    EXPECT_EQ(particles.mass[k], 0.25 * before.mass[0]);
+    EXPECT_EQ(particles.radius[k], 0.5 * before.radius[0]);
+    EXPECT_EQ(particles.velocity(k), before.velocity(0));
+    EXPECT_EQ(particles.level[k], 3);
+    EXPECT_EQ(particles.still_time[k], 0.25);
+    EXPECT_EQ(particles.state[k], ParticleState::flowing);
+  }
+  // The deposited particle is untouched.
+  EXPECT_EQ(particles.x[1], before.x[1]);
+  EXPECT_EQ(particles.mass[1], before.mass[1]);
+  EXPECT_EQ(particles.state[1], ParticleState::deposited);
+}
+
+TEST(ParticleFission, NoSplitBelowTheSmallestSpacing) {
+  const GroundModel ground = plane_ground();
+  const FissionRule rule{0.5, 4.0};
+  {
+    // Spacing 4 m = smallest: never splits although its contrast is far above the threshold.
+    ParticleSet particles = pressure_step_pair(ground, 4.0);
+    const NeighbourGrid grid = binned(particles);
+    ASSERT_GT(pressure_contrast(particles, grid, 0), rule.threshold);
+    EXPECT_EQ(split_particles(particles, grid, ground, rule), 0u);
+    EXPECT_EQ(particles.size(), 2u);
+    EXPECT_EQ(particles.radius[0], radius_of_spacing(4.0));
+  }
+  {
+    // Spacing 8 m: splits into children of exactly the smallest spacing.
+    ParticleSet particles = pressure_step_pair(ground, 8.0);
+    const NeighbourGrid grid = binned(particles);
+    EXPECT_EQ(split_particles(particles, grid, ground, rule), 1u);
+    EXPECT_NEAR(particles.radius[0] / kSupportPerSpacing, 4.0, 1e-12);
+  }
+}
+
+TEST(ParticleFission, NoSplitWhenAChildWouldLeaveTheGround) {
+  const GroundModel ground = plane_ground();
+  ParticleSet particles;
+  // 1 m inside the east edge (x = 200 m): the eastern children (x + 2 m) would be off the ground.
+  const double spacing = 8.0, x = 199.0, y = -100.0;
+  particles.add(5000.0, {x, y, ground.elevation(x, y)}, Eigen::Vector3d::Zero(), radius_of_spacing(spacing));
+  particles.add(5000.0, {x - spacing, y, ground.elevation(x - spacing, y)}, Eigen::Vector3d::Zero(),
+                radius_of_spacing(spacing));
+  particles.state[1] = ParticleState::deposited;
+  set_sph_density(particles);
+  particles.pressure = {1000.0, 50000.0};
+  const NeighbourGrid grid = binned(particles);
+  ASSERT_GT(pressure_contrast(particles, grid, 0), 0.5);
+  EXPECT_EQ(split_particles(particles, grid, ground, FissionRule{}), 0u);
+  EXPECT_EQ(particles.size(), 2u);
+}
+
+TEST(ParticleFission, SplitConservesMassAndMomentumOnARandomCloud) {
+  const GroundModel ground = plane_ground();
+  std::mt19937_64 random(20240905);
+  std::uniform_real_distribution<double> coordinate(20.0, 180.0), unit(0.0, 1.0), speed(-5.0, 5.0);
+  ParticleSet particles;
+  for (int k = 0; k < 500; ++k) {
+    const double x = coordinate(random), y = -coordinate(random);
+    const double spacing = unit(random) < 0.5 ? 4.0 : 8.0;                      // m
+    const double mass = 1000.0 * spacing * spacing * (0.5 + unit(random));      // kg
+    particles.add(mass, {x, y, ground.elevation(x, y)}, {speed(random), speed(random), speed(random)},
+                  radius_of_spacing(spacing));
+  }
+  set_sph_density(particles);
+  for (double& p : particles.pressure) p = 1000.0 + 50000.0 * unit(random);  // Pa
+  const double mass_before = particles.total_mass();
+  const Eigen::Vector3d momentum_before = particles.total_momentum();
+  const double scale = momentum_scale(particles);
+  const NeighbourGrid grid = binned(particles);
+
+  const std::size_t splits = split_particles(particles, grid, ground, FissionRule{0.5, 2.0});
+  // The random pressures make many particles split.
+  EXPECT_GT(splits, 100u);
+  EXPECT_EQ(particles.size(), 500u + 3u * splits);
+  // Mass to 1e-12 relative; momentum to 1e-10 of the sum of |m v|.
+  EXPECT_LE(std::abs(particles.total_mass() - mass_before) / mass_before, 1e-12);
+  EXPECT_LE((particles.total_momentum() - momentum_before).norm() / scale, 1e-10);
+}
+
+}  // namespace
+}  // namespace talus

@@ -1,0 +1,113 @@
+// Tests of the basal resistance of each rheology and its implicit integration (docs/mudflow.md
+// "Rheology").
+#include "talus/mudflow/rheology.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "talus/core/errors.hpp"
+
+namespace talus {
+namespace {
+
+constexpr double kRho = 2000.0;  // kg/m3
+constexpr double kG = 9.81;      // m/s2
+
+BasalContact contact(double depth, double normal_acceleration, double friction, double vegetation = 0.0) {
+  BasalContact c;
+  c.depth = depth;
+  c.normal_acceleration = normal_acceleration;
+  c.lithology_friction = friction;
+  c.vegetation_deperdition = vegetation;
+  return c;
+}
+
+TEST(Rheology, NamesRoundTripAndUnknownNamesAreRefused) {
+  for (const Rheology r : {Rheology::viscous, Rheology::coulomb, Rheology::voellmy, Rheology::bingham}) {
+    EXPECT_EQ(parse_rheology(to_string(r)), r);
+  }
+  try {
+    parse_rheology("newtonian");
+    FAIL() << "no InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("newtonian"), std::string::npos);
+  }
+}
+
+TEST(Rheology, EachLawGivesItsStressOverRhoH) {
+  RheologyParameters p;
+  p.friction_factor = 0.5;
+  p.turbulence = 400.0;
+  p.viscosity = 50.0;
+  p.yield_stress = 300.0;
+  const BasalContact c = contact(2.0, 9.0, 0.6, 0.01);
+  const double rho_h = kRho * 2.0;  // kg/m2
+  // Relative tolerance 1e-15: these are the closed forms, evaluated once more.
+  p.rheology = Rheology::coulomb;
+  BasalResistance r = basal_resistance(p, c, kRho, kG);
+  EXPECT_DOUBLE_EQ(r.yield, 0.3 * 9.0);  // mu N / (rho h), N = rho h 9 m/s2
+  EXPECT_EQ(r.linear, 0.0);
+  EXPECT_DOUBLE_EQ(r.quadratic, 0.01);  // vegetation only
+  p.rheology = Rheology::voellmy;
+  r = basal_resistance(p, c, kRho, kG);
+  EXPECT_DOUBLE_EQ(r.yield, 0.3 * 9.0);
+  EXPECT_DOUBLE_EQ(r.quadratic, kRho * kG / 400.0 / rho_h + 0.01);  // rho g u^2 / xi / (rho h)
+  p.rheology = Rheology::viscous;
+  r = basal_resistance(p, c, kRho, kG);
+  EXPECT_EQ(r.yield, 0.0);
+  EXPECT_DOUBLE_EQ(r.linear, 3.0 * 50.0 / 2.0 / rho_h);  // 3 eta u / h / (rho h)
+  p.rheology = Rheology::bingham;
+  r = basal_resistance(p, c, kRho, kG);
+  EXPECT_DOUBLE_EQ(r.yield, 300.0 / rho_h);  // tau_y / (rho h)
+  EXPECT_DOUBLE_EQ(r.linear, 3.0 * 50.0 / 2.0 / rho_h);
+}
+
+TEST(Rheology, ResistanceStopsButNeverReverses) {
+  BasalResistance r;
+  r.yield = 3.0;  // m/s2
+  // 1 m/s against 3 m/s2 for 1 s: stopped, not reversed; for 0.1 s: 0.7 m/s.
+  EXPECT_EQ(resisted_speed(r, 1.0, 1.0), 0.0);
+  EXPECT_NEAR(resisted_speed(r, 1.0, 0.1), 0.7, 1e-15);
+  // Any step, however long, leaves a speed in [0, u0].
+  r.linear = 50.0;
+  r.quadratic = 20.0;
+  for (const double step : {1e-6, 1e-3, 0.1, 10.0, 1e6}) {
+    const double u = resisted_speed(r, 5.0, step);
+    EXPECT_GE(u, 0.0);
+    EXPECT_LE(u, 5.0);
+  }
+}
+
+TEST(Rheology, ImplicitStepSolvesTheBackwardEulerEquation) {
+  BasalResistance r;
+  r.yield = 0.5;
+  r.linear = 0.8;
+  r.quadratic = 0.05;
+  for (const double step : {0.01, 0.1, 1.0}) {
+    const double u0 = 12.0, u1 = resisted_speed(r, u0, step);
+    // u1 = u0 - dt (yield + linear u1 + quadratic u1^2), to rounding (1e-12 m/s).
+    EXPECT_NEAR(u1, u0 - step * (r.yield + r.linear * u1 + r.quadratic * u1 * u1), 1e-12) << step;
+  }
+  // Without resistance the speed is unchanged.
+  EXPECT_EQ(resisted_speed(BasalResistance{}, 3.5, 0.2), 3.5);
+}
+
+TEST(Rheology, VoellmyTerminalSpeedOnASlope) {
+  // A column on a slope where gravity's pull g sin(theta) balances mu g cos(theta) + g u^2 / (xi h)
+  // reaches u = sqrt(xi h (sin - mu cos)): kick and resist with small steps until steady.
+  RheologyParameters p;
+  p.rheology = Rheology::voellmy;
+  p.friction_factor = 1.0;
+  p.turbulence = 500.0;
+  const double theta = 0.5, h = 1.5, mu = 0.2;
+  const BasalResistance r = basal_resistance(p, contact(h, kG * std::cos(theta), mu), kRho, kG);
+  double u = 0;
+  for (int k = 0; k < 200000; ++k) u = resisted_speed(r, u + kG * std::sin(theta) * 1e-3, 1e-3);
+  const double expected = std::sqrt(500.0 * h * (std::sin(theta) - mu * std::cos(theta)));
+  EXPECT_NEAR(u, expected, 2e-3 * expected);  // 0.2%: first-order splitting error at dt = 1 ms
+}
+
+}  // namespace
+}  // namespace talus

@@ -1,0 +1,81 @@
+// Tests of the contact of the columns with the bilinear ground (paper 2.2, 4.1; docs/mudflow.md
+// "Ground contact").
+#include "talus/mudflow/surface_following.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "../../validation/synthetic_ground.hpp"
+
+namespace talus {
+namespace {
+
+using testing_ground::fast_material;
+using testing_ground::local_spec;
+using testing_ground::make_ground;
+
+// A plane falling at 0.4 towards +x over x in [0, 99] m, y in [-99, 0] m.
+GroundModel plane() {
+  return make_ground(local_spec(100, 100, 1.0), [](double x, double) { return 100.0 - 0.4 * x; },
+                     fast_material(0, 0, 0.5));
+}
+
+TEST(SurfaceFollowing, DriftKeepsTheFootOnTheGroundAndTheSpeed) {
+  const GroundModel ground = plane();
+  ParticleSet p;
+  p.add(1.0, {10.0, -50.0, 0.0}, {3.0, 1.0, 0.0}, 1.0);
+  FootNormals normals;
+  normals.resize(1);
+  place_on_ground(ground, p, 0, normals);
+  const double speed = p.velocity(0).norm();
+  EXPECT_NEAR(p.z[0], 96.0, 1e-12);
+  EXPECT_NEAR(p.velocity(0).dot(normals.at(0)), 0.0, 1e-12);
+  EXPECT_NEAR(speed, std::hypot(3.0, 1.0), 1e-12);  // turned, not shortened
+  for (int k = 0; k < 10; ++k) ASSERT_TRUE(drift_on_ground(ground, p, 0, 0.5, normals));
+  EXPECT_NEAR(p.z[0], ground.elevation(p.x[0], p.y[0]), 1e-12);
+  EXPECT_NEAR(p.velocity(0).norm(), speed, 1e-12);
+  EXPECT_NEAR(normals.z[0], 1.0 / std::sqrt(1.16), 1e-12);  // cos(theta), tan(theta) = 0.4
+}
+
+TEST(SurfaceFollowing, LeavingTheValidAreaIsReportedAndTheParticleStays) {
+  const GroundModel ground = plane();
+  ParticleSet p;
+  p.add(1.0, {98.5, -50.0, 0.0}, {10.0, 0.0, 0.0}, 1.0);
+  FootNormals normals;
+  normals.resize(1);
+  place_on_ground(ground, p, 0, normals);
+  const Eigen::Vector3d before = p.position(0);
+  EXPECT_FALSE(drift_on_ground(ground, p, 0, 1.0, normals));
+  EXPECT_EQ(p.position(0), before);
+  p.vx[0] = std::nan("");
+  EXPECT_FALSE(drift_on_ground(ground, p, 0, 1.0, normals));
+}
+
+TEST(SurfaceFollowing, TurnedIntoPlaneKeepsLengthAndLiesInThePlane) {
+  const Eigen::Vector3d n = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
+  const Eigen::Vector3d v(2.0, 1.0, -0.5);
+  const Eigen::Vector3d turned = turned_into_plane(v, n);
+  EXPECT_NEAR(turned.norm(), v.norm(), 1e-12);
+  EXPECT_NEAR(turned.dot(n), 0.0, 1e-12);
+  EXPECT_NEAR(tangent_part(v, n).dot(n), 0.0, 1e-12);
+}
+
+TEST(SurfaceFollowing, CurvatureOfAHollowAndOfACrest) {
+  // z = +-x^2 / (2 rho) with rho = 50 m: curvature 1/rho at x = 0 along x, none along y.
+  const double rho = 50.0;
+  const GridSpec spec = local_spec(81, 81, 0.5);
+  const GroundModel hollow = make_ground(spec, [&](double x, double) { return (x - 20) * (x - 20) / (2 * rho); },
+                                         fast_material(0, 0, 0.5));
+  const GroundModel crest = make_ground(spec, [&](double x, double) { return -(x - 20) * (x - 20) / (2 * rho); },
+                                        fast_material(0, 0, 0.5));
+  const Eigen::Vector3d along_x(1, 0, 0), along_y(0, 1, 0);
+  // 2%: the bilinear surface bends only at node lines, averaged over the 2 m span.
+  EXPECT_NEAR(curvature_along(hollow, 20.0, -20.0, along_x, 1.0), 1.0 / rho, 0.02 / rho);
+  EXPECT_NEAR(curvature_along(crest, 20.0, -20.0, along_x, 1.0), -1.0 / rho, 0.02 / rho);
+  EXPECT_NEAR(curvature_along(hollow, 20.0, -20.0, along_y, 1.0), 0.0, 1e-12);
+  EXPECT_EQ(curvature_along(hollow, 20.0, -20.0, Eigen::Vector3d(0, 0, 1), 1.0), 0.0);
+}
+
+}  // namespace
+}  // namespace talus

@@ -1,0 +1,65 @@
+// Same seed, same inputs: bit-identical layers at 1 and 2 threads (issue 5; docs/mudflow.md
+// "Determinism"), for a uniform run that entrains (its 720 particles are enough for the particle
+// loops to run in parallel) and for an adaptive one, each over the first 4 s of the chute's flow
+// (down the erodible bed).
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "mudflow_scenes.hpp"
+
+namespace talus {
+namespace {
+
+// True when both grids hold the same bits.
+bool same_bits(const Grid<float>& a, const Grid<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.values().data(), b.values().data(), a.size() * sizeof(float)) == 0;
+}
+
+MudflowSettings first_seconds(bool adaptive, int threads) {
+  MudflowSettings s = mudflow_scenes::Chute::settings(adaptive, threads);
+  s.duration = 4.0;
+  s.parallel_particles = 1;  // every per-particle loop in parallel, however short
+  return s;
+}
+
+void expect_identical(const MudflowResult& one, const MudflowResult& two) {
+  EXPECT_TRUE(same_bits(one.layers.flow_depth_max, two.layers.flow_depth_max));
+  EXPECT_TRUE(same_bits(one.layers.velocity_max, two.layers.velocity_max));
+  EXPECT_TRUE(same_bits(one.layers.pressure_max, two.layers.pressure_max));
+  EXPECT_TRUE(same_bits(one.layers.deposit_depth, two.layers.deposit_depth));
+  EXPECT_TRUE(same_bits(one.layers.arrival_time, two.layers.arrival_time));
+  ASSERT_EQ(one.layers.erosion_depth.has_value(), two.layers.erosion_depth.has_value());
+  if (one.layers.erosion_depth) {
+    EXPECT_TRUE(same_bits(*one.layers.erosion_depth, *two.layers.erosion_depth));
+  }
+  EXPECT_EQ(one.particle_steps, two.particle_steps);
+  EXPECT_EQ(one.final_particles, two.final_particles);
+  EXPECT_EQ(one.simulated_time, two.simulated_time);
+  EXPECT_EQ(one.threads, 1);
+  EXPECT_EQ(two.threads, 2);
+}
+
+TEST(MudflowThreadDeterminism, UniformRunWithEntrainment) {
+  const mudflow_scenes::Chute chute;
+  const MudflowResult one = run_mudflow(chute.ground_model, chute.release_set, &chute.erodible,
+                                        first_seconds(false, 1), nullptr);
+  const MudflowResult two = run_mudflow(chute.ground_model, chute.release_set, &chute.erodible,
+                                        first_seconds(false, 2), nullptr);
+  EXPECT_GT(one.entrained_volume, 0.0);
+  expect_identical(one, two);
+}
+
+TEST(MudflowThreadDeterminism, AdaptiveRun) {
+  const mudflow_scenes::Chute chute;
+  const MudflowResult one = run_mudflow(chute.ground_model, chute.release_set, &chute.erodible,
+                                        first_seconds(true, 1), nullptr);
+  const MudflowResult two = run_mudflow(chute.ground_model, chute.release_set, &chute.erodible,
+                                        first_seconds(true, 2), nullptr);
+  EXPECT_GT(one.splits, 0u);
+  EXPECT_GT(one.entrained_volume, 0.0);
+  expect_identical(one, two);
+}
+
+}  // namespace
+}  // namespace talus
