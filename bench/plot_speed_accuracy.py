@@ -13,13 +13,13 @@ named on stderr and in the key.
 
 Usage: /usr/bin/python3 bench/plot_speed_accuracy.py IN.csv OUT.png
 """
-import csv
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+from speed_accuracy_csv import read_rows  # noqa: E402
 
 # Values that are exactly 0 are drawn at this floor of the log axes (-).
 LOG_FLOOR = 1e-4
@@ -28,22 +28,6 @@ NUMBERS = ("cpu_ms_per_trajectory", "median_runout_rel_error", "ks_runout", "rea
 COLOURS = {"full": "tab:blue", "fast": "tab:red"}
 # Label offsets (points), cycled so that neighbouring markers' numbers do not sit on each other.
 OFFSETS = ((5, 3), (5, -9), (-11, 3), (-11, -9))
-
-
-def read_rows(path):
-    """(rows that finished cleanly, with numbers converted; names of the others with their status)."""
-    with open(path, newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    kept, left_out = [], []
-    for row in rows:
-        if row["status"] != "ok":
-            print(f"left out ({row['status']}): {row['configuration']}", file=sys.stderr)
-            left_out.append(f"{row['configuration']} ({row['status'].replace('_', ' ')})")
-            continue
-        for key in NUMBERS:
-            row[key] = float(row[key])
-        kept.append(row)
-    return kept, left_out
 
 
 def floor(value):
@@ -64,7 +48,7 @@ def draw_pair(axes, row, number, circle_key, cross_key):
 def main():
     if len(sys.argv) != 3:
         sys.exit("usage: plot_speed_accuracy.py IN.csv OUT.png")
-    rows, left_out = read_rows(sys.argv[1])
+    rows, left_out = read_rows(sys.argv[1], NUMBERS)
     reference = rows[0]
     noise = [r for r in rows[1:] if r["configuration"].endswith("other seed")]
     points = [r for r in rows[1:] if not r["configuration"].endswith("other seed")]
