@@ -5,6 +5,7 @@
 #include <ogr_spatialref.h>
 
 #include <mutex>
+#include <stdexcept>
 
 #include "talus/core/errors.hpp"
 
@@ -61,6 +62,26 @@ std::string wkt_of(const OGRSpatialReference* srs) {
   std::string text = wkt != nullptr ? wkt : "";
   CPLFree(wkt);
   return text;
+}
+
+void write_failure(const std::filesystem::path& path, const std::string& step) {
+  throw std::runtime_error("cannot write " + path.string() + ": " + step + ": " + last_gdal_error("failed"));
+}
+
+void check_written(OGRErr result, const std::filesystem::path& path, const std::string& step) {
+  if (result != OGRERR_NONE) write_failure(path, step);
+}
+
+OGRSpatialReference vector_layer_crs(const std::string& crs_wkt, const std::filesystem::path& path) {
+  OGRSpatialReference srs;
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (crs_wkt.empty()) {
+    srs.SetLocalCS("Undefined Cartesian SRS");
+    srs.SetLinearUnits(SRS_UL_METER, 1.0);
+  } else {
+    check_written(srs.importFromWkt(crs_wkt.c_str()), path, "reading the CRS");
+  }
+  return srs;
 }
 
 }  // namespace talus::gis

@@ -58,43 +58,21 @@ constexpr double kEndGap = 0.001;
 // Seconds of 2000-01-01T00:00:00Z after 1970-01-01T00:00:00Z.
 constexpr std::time_t kEpochSeconds = 946684800;
 
-[[noreturn]] void gdal_failure(const std::filesystem::path& path, const std::string& step) {
-  throw std::runtime_error("cannot write " + path.string() + ": " + step + ": " + last_gdal_error("failed"));
-}
-
-void check(OGRErr result, const std::filesystem::path& path, const std::string& step) {
-  if (result != OGRERR_NONE) gdal_failure(path, step);
-}
-
-// The layer's CRS; local coordinates get the GeoPackage's "Undefined Cartesian SRS" (srs_id -1,
-// metres) rather than GDAL 3.6's default for none, the undefined geographic SRS.
-OGRSpatialReference layer_crs(const std::string& crs_wkt, const std::filesystem::path& path) {
-  OGRSpatialReference srs;
-  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  if (crs_wkt.empty()) {
-    srs.SetLocalCS("Undefined Cartesian SRS");
-    srs.SetLinearUnits(SRS_UL_METER, 1.0);
-  } else {
-    check(srs.importFromWkt(crs_wkt.c_str()), path, "reading the CRS");
-  }
-  return srs;
-}
-
 OGRLayer& create_layer(GDALDataset& dataset, const std::string& crs_wkt, const std::filesystem::path& path) {
-  OGRSpatialReference srs = layer_crs(crs_wkt, path);
+  OGRSpatialReference srs = vector_layer_crs(crs_wkt, path);
   const char* const options[] = {"IDENTIFIER=Mud-flow particles",
                                  "DESCRIPTION=Mud-flow particle snapshots: foot of each particle's column, x and y in "
                                  "the CRS, z ground elevation (m); shown from start_time to end_time, "
                                  "2000-01-01T00:00:00Z being the release",
                                  nullptr};
   OGRLayer* layer = dataset.CreateLayer("particles", &srs, wkbPoint25D, const_cast<char**>(options));
-  if (layer == nullptr) gdal_failure(path, "creating the layer");
+  if (layer == nullptr) write_failure(path, "creating the layer");
   for (const Field& field : kFields) {
     OGRFieldDefn definition(field.name, field.type);
     definition.SetAlternativeName(field.alias);
-    check(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
+    check_written(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
   }
-  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) gdal_failure(path, "setting the metadata");
+  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) write_failure(path, "setting the metadata");
   return *layer;
 }
 
@@ -125,7 +103,7 @@ void add_snapshot(OGRLayer& layer, const ParticleSnapshot& snapshot, double show
     feature.SetField("mass_kg", snapshot.mass[i]);
     feature.SetField("radius_m", snapshot.radius[i]);
     feature.SetGeometryDirectly(new OGRPoint(snapshot.x[i], snapshot.y[i], snapshot.z[i]));
-    check(layer.CreateFeature(&feature), path, "writing a particle");
+    check_written(layer.CreateFeature(&feature), path, "writing a particle");
   }
 }
 
@@ -155,18 +133,18 @@ void write_particle_snapshots(const std::filesystem::path& path, const std::vect
 
   CPLErrorReset();
   GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!dataset) gdal_failure(path, "creating the GeoPackage");
+  if (!dataset) write_failure(path, "creating the GeoPackage");
   CPLErrorReset();  // a temporary name's extension other than .gpkg is only a warning
   try {
     OGRLayer& layer = create_layer(*dataset, crs_wkt, path);
-    check(dataset->StartTransaction(), path, "starting the transaction");
+    check_written(dataset->StartTransaction(), path, "starting the transaction");
     for (std::size_t k = 0; k < snapshots.size(); ++k) {
       const double next = k + 1 < snapshots.size() ? snapshots[k + 1].time : snapshots[k].time + interval;
       add_snapshot(layer, snapshots[k], std::max(snapshots[k].time, next - kEndGap), path);
     }
-    check(dataset->CommitTransaction(), path, "committing the features");
+    check_written(dataset->CommitTransaction(), path, "committing the features");
     dataset.reset();  // closes the file; a failed close shows in the error state only
-    if (CPLGetLastErrorType() == CE_Failure) gdal_failure(path, "closing the GeoPackage");
+    if (CPLGetLastErrorType() == CE_Failure) write_failure(path, "closing the GeoPackage");
   } catch (...) {
     dataset.reset();
     remove_quietly(path);

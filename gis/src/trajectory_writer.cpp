@@ -37,44 +37,21 @@ constexpr std::array kFields{
     Field{"runout_length_m", OFTReal, "Runout length (m)"},
 };
 
-// "cannot write PATH: STEP: GDAL's message".
-[[noreturn]] void gdal_failure(const std::filesystem::path& path, const std::string& step) {
-  throw std::runtime_error("cannot write " + path.string() + ": " + step + ": " + last_gdal_error("failed"));
-}
-
-void check(OGRErr result, const std::filesystem::path& path, const std::string& step) {
-  if (result != OGRERR_NONE) gdal_failure(path, step);
-}
-
-// The layer's CRS. Local coordinates get the GeoPackage's "Undefined Cartesian SRS" (srs_id -1,
-// metres): GDAL 3.6 stores a layer without CRS as srs_id 0, the undefined *geographic* one.
-OGRSpatialReference layer_crs(const std::string& crs_wkt, const std::filesystem::path& path) {
-  OGRSpatialReference srs;
-  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  if (crs_wkt.empty()) {
-    srs.SetLocalCS("Undefined Cartesian SRS");
-    srs.SetLinearUnits(SRS_UL_METER, 1.0);
-  } else {
-    check(srs.importFromWkt(crs_wkt.c_str()), path, "reading the CRS");
-  }
-  return srs;
-}
-
 OGRLayer& create_layer(GDALDataset& dataset, const std::string& crs_wkt, const std::filesystem::path& path) {
-  OGRSpatialReference srs = layer_crs(crs_wkt, path);
+  OGRSpatialReference srs = vector_layer_crs(crs_wkt, path);
   const char* const options[] = {"IDENTIFIER=Rock-fall trajectories",
                                  "DESCRIPTION=Sampled rock-fall trajectories: centre of mass of the rock, "
                                  "x and y in the CRS, z elevation (m); energy in kJ, length in m",
                                  nullptr};
   OGRLayer* layer = dataset.CreateLayer("trajectories", &srs, wkbLineString25D,
                                         const_cast<char**>(options));
-  if (layer == nullptr) gdal_failure(path, "creating the layer");
+  if (layer == nullptr) write_failure(path, "creating the layer");
   for (const Field& field : kFields) {
     OGRFieldDefn definition(field.name, field.type);
     definition.SetAlternativeName(field.alias);
-    check(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
+    check_written(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
   }
-  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) gdal_failure(path, "setting the metadata");
+  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) write_failure(path, "setting the metadata");
   return *layer;
 }
 
@@ -94,7 +71,7 @@ void add_feature(OGRLayer& layer, const TrajectoryLine& line, const std::filesys
     }
     feature.SetGeometryDirectly(geometry.release());
   }
-  check(layer.CreateFeature(&feature), path, "writing a trajectory");
+  check_written(layer.CreateFeature(&feature), path, "writing a trajectory");
 }
 
 void remove_quietly(const std::filesystem::path& path) {
@@ -115,15 +92,15 @@ void write_trajectories(const std::filesystem::path& path, const std::vector<Tra
 
   CPLErrorReset();
   GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!dataset) gdal_failure(path, "creating the GeoPackage");
+  if (!dataset) write_failure(path, "creating the GeoPackage");
   CPLErrorReset();  // a temporary name's extension other than .gpkg is only a warning
   try {
     OGRLayer& layer = create_layer(*dataset, crs_wkt, path);
-    check(dataset->StartTransaction(), path, "starting the transaction");
+    check_written(dataset->StartTransaction(), path, "starting the transaction");
     for (const TrajectoryLine& line : lines) add_feature(layer, line, path);
-    check(dataset->CommitTransaction(), path, "committing the features");
+    check_written(dataset->CommitTransaction(), path, "committing the features");
     dataset.reset();  // closes the file; a failed close shows in the error state only
-    if (CPLGetLastErrorType() == CE_Failure) gdal_failure(path, "closing the GeoPackage");
+    if (CPLGetLastErrorType() == CE_Failure) write_failure(path, "closing the GeoPackage");
   } catch (...) {
     dataset.reset();
     remove_quietly(path);
