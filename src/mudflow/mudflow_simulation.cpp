@@ -16,7 +16,7 @@
 #include "talus/mudflow/flow_density.hpp"
 #include "talus/mudflow/flow_forces.hpp"
 #include "talus/mudflow/flow_guard.hpp"
-#include "talus/mudflow/neighbour_grid.hpp"
+#include "talus/mudflow/pair_search.hpp"
 #include "talus/mudflow/particle_fission.hpp"
 #include "talus/mudflow/particle_fusion.hpp"
 #include "talus/mudflow/release_particles.hpp"
@@ -145,7 +145,6 @@ class MudflowRun {
 
   void resize_work();
   void place_all_on_ground();
-  void rebuild_grid();
   void evaluate(const std::vector<std::uint32_t>& list);
   void evaluate_all();
   int wanted_level(std::size_t i) const;
@@ -173,13 +172,11 @@ class MudflowRun {
   const StepCriteria criteria_;
 
   ParticleSet p_;
-  NeighbourGrid grid_;
+  PairSearch pairs_;  // the sums' pairs, with the smoothing radii; the adaptivity's, with the support radii
   double reference_elevation_ = 0;  // m: lowest foot at the release (potential energy zero)
   FootNormals normals_;
   std::vector<NeighbourList> neighbours_;
   std::vector<double> smoothing_;         // m: support radius R_s of the sums (flow_density.hpp)
-  std::vector<double> sigma_;             // kg/m2: the sums being built
-  std::vector<std::vector<HandedPair>> handed_;  // pairs found for particles that cannot reach them
   std::vector<BasalResistance> resistance_;
   std::vector<std::uint8_t> wanted_;      // level the criteria ask for (with the guard's depth)
   std::vector<std::uint64_t> next_sync_;  // tick at which the particle's step ends
@@ -209,8 +206,6 @@ void MudflowRun::resize_work() {
   normals_.resize(n);
   neighbours_.resize(n);
   smoothing_.resize(n);
-  sigma_.resize(n);
-  handed_.resize(n);
   resistance_.resize(n);
   wanted_.resize(n, 0);
   next_sync_.resize(n, 0);
@@ -221,11 +216,10 @@ void MudflowRun::resize_work() {
 }
 
 // After the particle set changed (adaptivity, a guard restore): work arrays to size, feet
-// on the ground, the grid rebuilt, and densities and forces of every particle.
+// on the ground, and densities and forces of every particle.
 void MudflowRun::refresh() {
   resize_work();
   place_all_on_ground();
-  rebuild_grid();
   evaluate_all();
 }
 
@@ -243,25 +237,15 @@ void MudflowRun::place_all_on_ground() {
   });
 }
 
-// Bins of the largest support radius (flow_density.hpp: wider smoothing radii reach further).
-void MudflowRun::rebuild_grid() {
-  if (p_.size() == 0) return;
-  grid_.rebuild(p_, *std::max_element(p_.radius.begin(), p_.radius.end()));
-}
-
 // Density of every listed particle, then the forces, basal resistance and wanted level of the
-// flowing ones (paper 4.1). The passes are separate so each reads only finished values: the sums
-// (own search with the smoothing radii of the latest densities, then the handed pairs), the
-// column states and the smoothing radii for the next evaluation, the forces.
+// flowing ones (paper 4.1). Two passes, so each reads only finished values: the sums (over the
+// pair search's copies of the positions, masses and smoothing radii of the latest densities),
+// with the column states and the smoothing radii for the next evaluation; then the forces.
 void MudflowRun::evaluate(const std::vector<std::uint32_t>& list) {
-  for (const std::uint32_t i : list) active_[i] = 1;
+  pairs_.rebuild(p_, smoothing_, s_.particle_size * kSupportPerSpacing);
   for_each_listed(list, [&](std::size_t i) {
-    sigma_[i] = gather_density(p_, grid_, i, smoothing_, active_, neighbours_[i], handed_[i]);
-  });
-  for (const std::uint32_t i : list) active_[i] = 0;
-  add_handed_pairs(p_, list, handed_, neighbours_, sigma_);
-  for_each_listed(list, [&](std::size_t i) {
-    set_column_state(p_, i, sigma_[i], normals_.z[i], column_);
+    const double sigma = gather_density(p_, pairs_, i, smoothing_[i], neighbours_[i]);
+    set_column_state(p_, i, sigma, normals_.z[i], column_);
     smoothing_[i] = smoothing_radius(p_, i);
   });
   const double g = s_.gravity;
@@ -296,7 +280,6 @@ void MudflowRun::evaluate(const std::vector<std::uint32_t>& list) {
 }
 
 void MudflowRun::evaluate_all() {
-  grid_.update(p_);
   std::vector<std::uint32_t> list;
   list.reserve(p_.size());
   for (std::size_t i = 0; i < p_.size(); ++i) {
@@ -440,7 +423,6 @@ void MudflowRun::coarse_step() {
     for (const std::uint32_t i : moving) {
       if (outside_[i] == 0 && next_sync_[i] == now) active.push_back(i);
     }
-    grid_.update(p_);
     evaluate(active);
     close_steps(active);
     entrain(active);
@@ -450,7 +432,6 @@ void MudflowRun::coarse_step() {
     std::erase_if(moving, [&](std::uint32_t i) { return !flowing(i); });
   }
   compact_and_sort();
-  rebuild_grid();
   evaluate_all();
   std::vector<std::uint32_t> closing;
   for (std::size_t i = 0; i < p_.size(); ++i) {
@@ -478,23 +459,24 @@ bool MudflowRun::adapt() {
     }
     return count;
   };
-  grid_.update(p_);
+  const double finest_radius = s_.particle_size * kSupportPerSpacing;
+  pairs_.rebuild(p_, p_.radius, finest_radius);
   const FissionRule fission{s_.split_threshold, s_.particle_size};
-  const std::size_t split = conserve([&] { return split_particles(p_, grid_, ground_, fission); });
-  grid_.update(p_);
+  const std::size_t split = conserve([&] { return split_particles(p_, pairs_, ground_, fission); });
+  pairs_.rebuild(p_, p_.radius, finest_radius);
   const FusionRule fusion{s_.merge_threshold, s_.merge_speed, s_.particle_size * std::ldexp(1.0, s_.coarse_levels)};
-  const std::size_t merged = conserve([&] { return merge_particles(p_, grid_, ground_, fusion); });
+  const std::size_t merged = conserve([&] { return merge_particles(p_, pairs_, ground_, fusion); });
   splits_ += split;
   merges_ += merged;
   return split + merged > 0;
 }
 
 // At the end of a coarse step: drops the particles that left the valid area, counting their
-// volume as outflow, and puts the others in the order of square cells of the grid's bin size
-// (row by row, then by index), so that neighbours lie close in memory. The order depends only on
+// volume as outflow, and puts the others in the order of square cells of the largest support
+// radius (row by row, then by index), so that neighbours lie close in memory. The order depends only on
 // the positions, so the result does not depend on the thread count.
 void MudflowRun::compact_and_sort() {
-  const double bin = grid_.bin_size();
+  const double bin = p_.size() == 0 ? 1.0 : *std::max_element(p_.radius.begin(), p_.radius.end());
   double min_x = std::numeric_limits<double>::infinity(), min_y = min_x;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (outside_[i] != 0) {

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "talus/mudflow/smoothing_kernel.hpp"
 
@@ -30,27 +31,30 @@ constexpr std::array<std::array<double, 2>, 4> kChildOffsets{
 // 1999) so a linear pressure field gives its exact gradient whatever the neighbours' layout: the
 // plain sum underestimates it by 5% inside a square lattice at R = 2.4 spacings, by 21% at its
 // edge. Where L is ill-conditioned (no neighbours, or all in a line) the plain sum is used.
-double pressure_contrast(const ParticleSet& particles, const NeighbourGrid& grid, std::size_t i) {
+double pressure_contrast(const ParticleSet& particles, const PairSearch& search, std::size_t i) {
   const double pressure_i = particles.pressure[i];
   if (!(pressure_i > 0)) return 0;
   const double xi = particles.x[i], yi = particles.y[i], radius_i = particles.radius[i];
+  const double inverse_i = 1.0 / radius_i;
   double gradient_x = 0, gradient_y = 0;  // Pa/m: the plain sum G
   double lxx = 0, lxy = 0, lyy = 0;       // -: the normalisation matrix L (symmetric)
-  grid.for_each_candidate(xi, yi, grid.bin_size(), [&](std::uint32_t j) {
-    if (j == i || !(particles.density[j] > 0)) return;
-    const double dx = xi - particles.x[j], dy = yi - particles.y[j];
-    const double r = std::hypot(dx, dy);  // m
-    if (r == 0) return;
-    const double slope = 0.5 * (kernel_slope(r, radius_i) + kernel_slope(r, particles.radius[j]));  // 1/m3
-    if (slope == 0) return;
-    const double weight = particles.mass[j] / particles.density[j] * slope / r;  // 1/m2
-    const double difference = particles.pressure[j] - pressure_i;               // Pa
+  thread_local std::vector<std::uint32_t> slots;
+  search.find_pairs(xi, yi, radius_i, static_cast<std::uint32_t>(i), slots);
+  for (const std::uint32_t s : slots) {
+    const std::uint32_t j = search.index(s);
+    if (!(particles.density[j] > 0)) continue;
+    const double dx = xi - search.x(s), dy = yi - search.y(s);
+    const double r = std::sqrt(dx * dx + dy * dy);  // m
+    if (r == 0) continue;
+    const double slope = 0.5 * (sample_kernel(r, inverse_i).slope + sample_kernel(r, search.inverse_radius(s)).slope);
+    const double weight = search.mass(s) / particles.density[j] * slope / r;  // 1/m2
+    const double difference = particles.pressure[j] - pressure_i;             // Pa
     gradient_x += weight * difference * dx;
     gradient_y += weight * difference * dy;
     lxx -= weight * dx * dx;
     lxy -= weight * dx * dy;
     lyy -= weight * dy * dy;
-  });
+  }
   const double trace = lxx + lyy, determinant = lxx * lyy - lxy * lxy;
   if (determinant > kWellConditioned * trace * trace) {
     const double corrected_x = (lyy * gradient_x - lxy * gradient_y) / determinant;
@@ -63,21 +67,21 @@ double pressure_contrast(const ParticleSet& particles, const NeighbourGrid& grid
 }
 
 // Paper 4.2: the criterion of every flowing particle, in parallel (one slot per particle).
-std::vector<double> pressure_contrasts(const ParticleSet& particles, const NeighbourGrid& grid) {
+std::vector<double> pressure_contrasts(const ParticleSet& particles, const PairSearch& search) {
   const std::size_t n = particles.size();
   std::vector<double> contrast(n, 0.0);
 #pragma omp parallel for schedule(static) if (n >= kParallelParticles)
   for (std::size_t i = 0; i < n; ++i) {
-    if (particles.state[i] == ParticleState::flowing) contrast[i] = pressure_contrast(particles, grid, i);
+    if (particles.state[i] == ParticleState::flowing) contrast[i] = pressure_contrast(particles, search, i);
   }
   return contrast;
 }
 
 // Paper 4.2, fig. 8a: every selected parent becomes four children of half its spacing and a
 // quarter of its mass each, with its velocity; selection on the state before any split.
-std::size_t split_particles(ParticleSet& particles, const NeighbourGrid& grid, const GroundModel& ground,
+std::size_t split_particles(ParticleSet& particles, const PairSearch& search, const GroundModel& ground,
                             const FissionRule& rule) {
-  const std::vector<double> contrast = pressure_contrasts(particles, grid);
+  const std::vector<double> contrast = pressure_contrasts(particles, search);
   const std::size_t parents = particles.size();
   std::size_t splits = 0;
   for (std::size_t i = 0; i < parents; ++i) {

@@ -35,7 +35,7 @@ bool same_radius(double a, double b) { return std::abs(a - b) <= kSizeTolerance 
 // Paper 4.2, fig. 8b, the group of i: i and its three nearest flowing neighbours of the same
 // radius within its support that are in no group yet, ties by index. Returns false when fewer
 // than three exist.
-bool nearest_group(const ParticleSet& particles, const NeighbourGrid& grid, const std::vector<char>& grouped,
+bool nearest_group(const ParticleSet& particles, const PairSearch& search, const std::vector<char>& grouped,
                    std::uint32_t i, Group& group) {
   struct Candidate {
     double distance2;  // m2
@@ -47,18 +47,20 @@ bool nearest_group(const ParticleSet& particles, const NeighbourGrid& grid, cons
   std::array<Candidate, kGroupSize - 1> nearest{};
   std::size_t found = 0;
   const double radius = particles.radius[i];  // m
-  grid.for_each_candidate(particles.x[i], particles.y[i], radius, [&](std::uint32_t j) {
-    if (j == i || grouped[j] || particles.state[j] != ParticleState::flowing) return;
-    if (!same_radius(particles.radius[j], radius)) return;
-    const double dx = particles.x[j] - particles.x[i], dy = particles.y[j] - particles.y[i];
+  thread_local std::vector<std::uint32_t> slots;
+  search.find_pairs(particles.x[i], particles.y[i], radius, i, slots);
+  for (const std::uint32_t s : slots) {
+    const std::uint32_t j = search.index(s);
+    if (grouped[j] || particles.state[j] != ParticleState::flowing) continue;
+    if (!same_radius(particles.radius[j], radius)) continue;
+    const double dx = search.x(s) - particles.x[i], dy = search.y(s) - particles.y[i];
     const Candidate candidate{dx * dx + dy * dy, j};
-    if (!(candidate.distance2 < radius * radius)) return;
-    if (found == nearest.size() && !(candidate < nearest.back())) return;
+    if (found == nearest.size() && !(candidate < nearest.back())) continue;
     // Insertion into the sorted list of the nearest, the farthest dropping out when it is full.
     std::size_t slot = found < nearest.size() ? found++ : nearest.size() - 1;
     for (; slot > 0 && candidate < nearest[slot - 1]; --slot) nearest[slot] = nearest[slot - 1];
     nearest[slot] = candidate;
-  });
+  }
   if (found < nearest.size()) return false;
   group = {i, nearest[0].index, nearest[1].index, nearest[2].index};
   std::sort(group.begin(), group.end());
@@ -147,9 +149,9 @@ void write_merged(ParticleSet& particles, const GroundModel& ground, const Merge
 }  // namespace
 
 // Paper 4.2, fig. 8b: groups chosen greedily in index order on the state at the call, then merged.
-std::size_t merge_particles(ParticleSet& particles, const NeighbourGrid& grid, const GroundModel& ground,
+std::size_t merge_particles(ParticleSet& particles, const PairSearch& search, const GroundModel& ground,
                             const FusionRule& rule) {
-  const std::vector<double> contrast = pressure_contrasts(particles, grid);
+  const std::vector<double> contrast = pressure_contrasts(particles, search);
   const std::size_t n = particles.size();
   std::vector<char> grouped(n, 0);
   std::vector<Merged> merges;
@@ -157,7 +159,7 @@ std::size_t merge_particles(ParticleSet& particles, const NeighbourGrid& grid, c
     if (grouped[i] || particles.state[i] != ParticleState::flowing) continue;
     Group group;
     Merged merged;
-    if (!nearest_group(particles, grid, grouped, static_cast<std::uint32_t>(i), group)) continue;
+    if (!nearest_group(particles, search, grouped, static_cast<std::uint32_t>(i), group)) continue;
     if (!merge_allowed(particles, ground, contrast, rule, group, merged)) continue;
     for (std::uint32_t k : group) grouped[k] = 1;
     merges.push_back(merged);

@@ -12,16 +12,15 @@
 // spacing), never below its size's support radius R and at most kLargestSmoothingGrowth R.
 //
 // Pairs. i and j interact when r < max(R_s,i, R_s,j), with the kernel averaged over both radii,
-// W_ij = (W(r, R_s,i) + W(r, R_s,j)) / 2, so pair forces are equal and opposite. Each particle
-// searches its own reach Q_i = max(R_s,i, grid bin size); a pair only the wider particle reaches
-// is handed to the other by add_handed_pairs.
+// W_ij = (W(r, R_s,i) + W(r, R_s,j)) / 2, so pair forces are equal and opposite. PairSearch finds
+// every pair of a particle, the ones only the wider neighbour reaches included.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include "talus/mudflow/neighbour_grid.hpp"
+#include "talus/mudflow/pair_search.hpp"
 #include "talus/mudflow/particle_set.hpp"
 
 namespace talus {
@@ -37,13 +36,6 @@ struct NeighbourPair {
 };
 using NeighbourList = std::vector<NeighbourPair>;
 
-// A pair particle i found that particle `index` cannot reach: the contribution i makes to it.
-struct HandedPair {
-  std::uint32_t index = 0;
-  double kernel = 0;           // W_ij (1/m2)
-  double gradient_factor = 0;  // as in NeighbourPair (1/m4)
-};
-
 struct ColumnConstants {
   double mud_density = 2000;  // rho0 (kg/m3)
   double gravity = 9.81;      // m/s2
@@ -53,19 +45,11 @@ struct ColumnConstants {
 // [R, kLargestSmoothingGrowth R]; R where it has no density yet.
 double smoothing_radius(const ParticleSet& particles, std::size_t i);
 
-// The SPH sum of particle i over the pairs it reaches itself (r < Q_i), i's own term
-// m_i W(0, R_s,i) included. Lists the pairs (i excluded) in the grid's order and returns the
-// partial sum sigma (kg/m2). Pairs with a particle flagged in `searching` that does not reach i
-// (r >= Q_j) go to `handed`, for add_handed_pairs.
-double gather_density(const ParticleSet& particles, const NeighbourGrid& grid, std::size_t i,
-                      const std::vector<double>& smoothing, const std::vector<char>& searching,
-                      NeighbourList& neighbours, std::vector<HandedPair>& handed);
-
-// Adds every handed pair to the other particle's list and sum, serially in the order of the
-// listed particles, so the result does not depend on the thread count.
-void add_handed_pairs(const ParticleSet& particles, const std::vector<std::uint32_t>& list,
-                      const std::vector<std::vector<HandedPair>>& handed, std::vector<NeighbourList>& neighbours,
-                      std::vector<double>& sigma);
+// The SPH sum of particle i, of smoothing radius `smoothing` R_s,i (m), over its pairs, its own
+// term m_i W(0, R_s,i) included: lists the pairs (i excluded) in the search's order and returns
+// sigma (kg/m2). `search` must hold the positions, masses and smoothing radii of this evaluation.
+double gather_density(const ParticleSet& particles, const PairSearch& search, std::size_t i, double smoothing,
+                      NeighbourList& neighbours);
 
 // Sets i's density, depth h = sigma cos(theta) / rho0 and basal pressure rho0 g cos(theta) h from
 // its sum sigma and cos_slope = cos(theta) at its foot.

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "talus/ground/ground_model.hpp"
-#include "talus/mudflow/neighbour_grid.hpp"
+#include "talus/mudflow/pair_search.hpp"
 #include "talus/mudflow/particle_set.hpp"
 
 namespace talus {
@@ -19,11 +19,12 @@ namespace talus {
 // horizontal plane, with the symmetrised kernel W_ij = (W(r, R_i) + W(r, R_j)) / 2, normalised
 // so that it is exact for a linear pressure field (Bonet & Lok 1999; the plain sum where the
 // neighbours are too few or in a line). Uses the density (kg/m2) and pressure (Pa) fields as
-// stored; `grid` must bin the particles as they are. 0 where P is 0.
-double pressure_contrast(const ParticleSet& particles, const NeighbourGrid& grid, std::size_t i);
+// stored; `search` must hold the particles as they are, with their support radii R. 0 where P
+// is 0.
+double pressure_contrast(const ParticleSet& particles, const PairSearch& search, std::size_t i);
 // pressure_contrast of every flowing particle (0 for the others), computed in parallel, each
 // particle writing only its own slot.
-std::vector<double> pressure_contrasts(const ParticleSet& particles, const NeighbourGrid& grid);
+std::vector<double> pressure_contrasts(const ParticleSet& particles, const PairSearch& search);
 
 struct FissionRule {
   double threshold = 0.5;        // split when pressure_contrast exceeds this (-)
@@ -36,9 +37,10 @@ struct FissionRule {
 // (x +- s / 4, y +- s / 4), each of mass m / 4 (exact in binary floating point). Children stand
 // on the ground (z from the ground model) and keep the parent's velocity, acceleration, density,
 // depth, pressure, level and still time; a particle whose children would leave the ground
-// model's valid area does not split. `grid` bins the particles as they are at the call; the
-// caller re-bins afterwards. Returns the number of particles split.
-std::size_t split_particles(ParticleSet& particles, const NeighbourGrid& grid, const GroundModel& ground,
+// model's valid area does not split. `search` holds the particles as they are at the call,
+// with their support radii; the caller rebuilds it afterwards. Returns the number of particles
+// split.
+std::size_t split_particles(ParticleSet& particles, const PairSearch& search, const GroundModel& ground,
                             const FissionRule& rule);
 
 }  // namespace talus

@@ -8,7 +8,7 @@
 #include <cstddef>
 
 #include "talus/ground/ground_model.hpp"
-#include "talus/mudflow/neighbour_grid.hpp"
+#include "talus/mudflow/pair_search.hpp"
 #include "talus/mudflow/particle_set.hpp"
 
 namespace talus {
@@ -29,9 +29,10 @@ struct FusionRule {
 // particle has the group's mass, its centre of mass (z from the ground model), its momentum
 // divided by its mass, twice the support radius, the smallest level and still time, and the
 // mass-weighted mean acceleration, density, depth and pressure (until the caller recomputes
-// them). It takes the place of the group's lowest index; the others are removed. `grid` bins the
-// particles as they are at the call; the caller re-bins afterwards. Returns the number of merges.
-std::size_t merge_particles(ParticleSet& particles, const NeighbourGrid& grid, const GroundModel& ground,
+// them). It takes the place of the group's lowest index; the others are removed. `search` holds
+// the particles as they are at the call, with their support radii; the caller rebuilds it
+// afterwards. Returns the number of merges.
+std::size_t merge_particles(ParticleSet& particles, const PairSearch& search, const GroundModel& ground,
                             const FusionRule& rule);
 
 }  // namespace talus

@@ -20,21 +20,16 @@ constexpr double kRho = 2000.0;  // kg/m3
 
 std::vector<NeighbourList> all_lists(std::size_t n) { return std::vector<NeighbourList>(n); }
 
-// Densities of every particle: smoothing radii from the stored densities, own sums, handed pairs.
-std::vector<double> sum_all(ParticleSet& p, const NeighbourGrid& grid, std::vector<double>& smoothing,
-                            std::vector<NeighbourList>& lists) {
+// Densities of every listed particle (all by default), with the smoothing radii of the stored
+// densities, as one evaluation of the simulation computes them.
+std::vector<double> sum_all(ParticleSet& p, std::vector<double>& smoothing, std::vector<NeighbourList>& lists) {
   const std::size_t n = p.size();
   smoothing.resize(n);
   for (std::size_t i = 0; i < n; ++i) smoothing[i] = smoothing_radius(p, i);
-  std::vector<char> searching(n, 1);
-  std::vector<std::vector<HandedPair>> handed(n);
+  PairSearch search;
+  search.rebuild(p, smoothing, *std::min_element(p.radius.begin(), p.radius.end()));
   std::vector<double> sigma(n);
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    order[i] = static_cast<std::uint32_t>(i);
-    sigma[i] = gather_density(p, grid, i, smoothing, searching, lists[i], handed[i]);
-  }
-  add_handed_pairs(p, order, handed, lists, sigma);
+  for (std::size_t i = 0; i < n; ++i) sigma[i] = gather_density(p, search, i, smoothing[i], lists[i]);
   return sigma;
 }
 
@@ -47,11 +42,9 @@ TEST(FlowDensity, UniformLatticeHasTheReleasedDepthAndHydrostaticPressure) {
       p.add(kRho * depth * spacing * spacing, {a * spacing, b * spacing, 0.0}, {0, 0, 0}, kSupportPerSpacing * spacing);
     }
   }
-  NeighbourGrid grid;
-  grid.rebuild(p, 0.0);
   std::vector<double> smoothing;
   auto lists = all_lists(p.size());
-  const std::vector<double> sigma = sum_all(p, grid, smoothing, lists);
+  const std::vector<double> sigma = sum_all(p, smoothing, lists);
   const ColumnConstants constants{kRho, 9.81};
   for (std::size_t i = 0; i < p.size(); ++i) set_column_state(p, i, sigma[i], 1.0, constants);
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -89,12 +82,10 @@ TEST(FlowDensity, PairsAreTheBruteForcePairsWithSymmetricKernels) {
     const std::size_t i = p.add(mass(generator), {coordinate(generator), coordinate(generator), 0.0}, {0, 0, 0}, 1.0);
     p.density[i] = density(generator);
   }
-  NeighbourGrid grid;
-  grid.rebuild(p, 0.0);
   std::vector<double> smoothing;
   auto lists = all_lists(p.size());
-  const std::vector<double> sigma = sum_all(p, grid, smoothing, lists);
-  ASSERT_GT(*std::max_element(smoothing.begin(), smoothing.end()), 2.0 * grid.bin_size());
+  const std::vector<double> sigma = sum_all(p, smoothing, lists);
+  ASSERT_GT(*std::max_element(smoothing.begin(), smoothing.end()), 3.0);  // classes 0, 1 and 2
   for (std::size_t i = 0; i < p.size(); ++i) {
     std::set<std::uint32_t> expected;
     double expected_sigma = p.mass[i] * kernel_value(0.0, smoothing[i]);

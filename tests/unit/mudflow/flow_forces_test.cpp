@@ -2,6 +2,7 @@
 // docs/mudflow.md "Forces").
 #include "talus/mudflow/flow_forces.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -23,22 +24,15 @@ struct Evaluated {
   FootNormals normals;
 };
 Evaluated evaluate(ParticleSet& p) {
-  NeighbourGrid grid;
-  grid.rebuild(p, 0.0);
   const std::size_t n = p.size();
   Evaluated e{std::vector<NeighbourList>(n), {}};
   e.normals.resize(n);
   std::vector<double> smoothing(n);
   for (std::size_t i = 0; i < n; ++i) smoothing[i] = smoothing_radius(p, i);
-  std::vector<char> searching(n, 1);
-  std::vector<std::vector<HandedPair>> handed(n);
+  PairSearch search;
+  search.rebuild(p, smoothing, *std::min_element(p.radius.begin(), p.radius.end()));
   std::vector<double> sigma(n);
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    order[i] = static_cast<std::uint32_t>(i);
-    sigma[i] = gather_density(p, grid, i, smoothing, searching, e.lists[i], handed[i]);
-  }
-  add_handed_pairs(p, order, handed, e.lists, sigma);
+  for (std::size_t i = 0; i < n; ++i) sigma[i] = gather_density(p, search, i, smoothing[i], e.lists[i]);
   for (std::size_t i = 0; i < n; ++i) set_column_state(p, i, sigma[i], 1.0, {kRho, kG});
   return e;
 }

@@ -36,10 +36,11 @@ void set_sph_density(ParticleSet& particles) {
   }
 }
 
-NeighbourGrid binned(const ParticleSet& particles) {
-  NeighbourGrid grid;
-  grid.rebuild(particles, *std::max_element(particles.radius.begin(), particles.radius.end()));
-  return grid;
+// The pair search over the particles' support radii, as the adaptivity uses it.
+PairSearch binned(const ParticleSet& particles) {
+  PairSearch search;
+  search.rebuild(particles, particles.radius, *std::min_element(particles.radius.begin(), particles.radius.end()));
+  return search;
 }
 
 // A square lattice of columns x columns particles of `spacing` (m) centred on (cx, cy), each of
@@ -86,9 +87,9 @@ TEST(ParticleFission, PressureContrastIsZeroInAUniformField) {
   const GroundModel ground = plane_ground();
   ParticleSet particles = lattice(ground, 11, 5.0, 100.0, -100.0);
   std::fill(particles.pressure.begin(), particles.pressure.end(), 20000.0);
-  const NeighbourGrid grid = binned(particles);
+  const PairSearch search = binned(particles);
   // Interior particle (the centre, index 60): equal pressures give no gradient; tolerance 1e-12.
-  EXPECT_NEAR(pressure_contrast(particles, grid, 60), 0.0, 1e-12);
+  EXPECT_NEAR(pressure_contrast(particles, search, 60), 0.0, 1e-12);
 }
 
 TEST(ParticleFission, PressureContrastMatchesALinearPressureGradient) {
@@ -98,12 +99,12 @@ TEST(ParticleFission, PressureContrastMatchesALinearPressureGradient) {
   for (std::size_t i = 0; i < particles.size(); ++i) {
     particles.pressure[i] = base + gx * (particles.x[i] - 100.0) + gy * (particles.y[i] + 100.0);
   }
-  const NeighbourGrid grid = binned(particles);
+  const PairSearch search = binned(particles);
   const std::size_t centre = 7 * 15 + 7;
   const double expected = spacing * std::hypot(gx, gy) / base;  // about 0.09
   // SPH gradient of a linear field on a lattice, with SPH densities (the plain sum is 5.3% low
   // here): within 5%.
-  EXPECT_NEAR(pressure_contrast(particles, grid, centre), expected, 0.05 * expected);
+  EXPECT_NEAR(pressure_contrast(particles, search, centre), expected, 0.05 * expected);
 }
 
 TEST(ParticleFission, PressureContrastMatchesALinearPressureGradientAtTheFlowEdge) {
@@ -115,19 +116,19 @@ TEST(ParticleFission, PressureContrastMatchesALinearPressureGradientAtTheFlowEdg
     const double dx = particles.x[i] - particles.x[edge], dy = particles.y[i] - particles.y[edge];  // m
     particles.pressure[i] = base + gx * dx + gy * dy;
   }
-  const NeighbourGrid grid = binned(particles);
+  const PairSearch search = binned(particles);
   const double expected = spacing * std::hypot(gx, gy) / base;
   // One-sided neighbours (the plain SPH sum is 21% low here): within 5%.
-  EXPECT_NEAR(pressure_contrast(particles, grid, edge), expected, 0.05 * expected);
+  EXPECT_NEAR(pressure_contrast(particles, search, edge), expected, 0.05 * expected);
 }
 
 TEST(ParticleFission, PressureContrastsAreZeroForDepositedParticles) {
   const GroundModel ground = plane_ground();
   ParticleSet particles = pressure_step_pair(ground, 8.0);
-  const NeighbourGrid grid = binned(particles);
-  const std::vector<double> contrast = pressure_contrasts(particles, grid);
+  const PairSearch search = binned(particles);
+  const std::vector<double> contrast = pressure_contrasts(particles, search);
   // The flowing particle gets its contrast (exactly the single-particle value), the deposited one 0.
-  EXPECT_EQ(contrast[0], pressure_contrast(particles, grid, 0));
+  EXPECT_EQ(contrast[0], pressure_contrast(particles, search, 0));
   EXPECT_GT(contrast[0], 0.5);
   EXPECT_EQ(contrast[1], 0.0);
 }
@@ -137,8 +138,8 @@ TEST(ParticleFission, ChildrenStandOnTheQuartersOfTheParentFootprint) {
   const double spacing = 8.0;  // m
   ParticleSet particles = pressure_step_pair(ground, spacing);
   const ParticleSet before = particles;
-  const NeighbourGrid grid = binned(particles);
-  ASSERT_EQ(split_particles(particles, grid, ground, FissionRule{}), 1u);
+  const PairSearch search = binned(particles);
+  ASSERT_EQ(split_particles(particles, search, ground, FissionRule{}), 1u);
   ASSERT_EQ(particles.size(), 5u);
   // The parent's slot holds the first child, children 2-4 are appended after the other particle.
   const std::vector<std::size_t> children{0, 2, 3, 4};
@@ -169,17 +170,17 @@ TEST(ParticleFission, NoSplitBelowTheSmallestSpacing) {
   {
     // Spacing 4 m = smallest: never splits although its contrast is far above the threshold.
     ParticleSet particles = pressure_step_pair(ground, 4.0);
-    const NeighbourGrid grid = binned(particles);
-    ASSERT_GT(pressure_contrast(particles, grid, 0), rule.threshold);
-    EXPECT_EQ(split_particles(particles, grid, ground, rule), 0u);
+    const PairSearch search = binned(particles);
+    ASSERT_GT(pressure_contrast(particles, search, 0), rule.threshold);
+    EXPECT_EQ(split_particles(particles, search, ground, rule), 0u);
     EXPECT_EQ(particles.size(), 2u);
     EXPECT_EQ(particles.radius[0], radius_of_spacing(4.0));
   }
   {
     // Spacing 8 m: splits into children of exactly the smallest spacing.
     ParticleSet particles = pressure_step_pair(ground, 8.0);
-    const NeighbourGrid grid = binned(particles);
-    EXPECT_EQ(split_particles(particles, grid, ground, rule), 1u);
+    const PairSearch search = binned(particles);
+    EXPECT_EQ(split_particles(particles, search, ground, rule), 1u);
     EXPECT_NEAR(particles.radius[0] / kSupportPerSpacing, 4.0, 1e-12);
   }
 }
@@ -195,9 +196,9 @@ TEST(ParticleFission, NoSplitWhenAChildWouldLeaveTheGround) {
   particles.state[1] = ParticleState::deposited;
   set_sph_density(particles);
   particles.pressure = {1000.0, 50000.0};
-  const NeighbourGrid grid = binned(particles);
-  ASSERT_GT(pressure_contrast(particles, grid, 0), 0.5);
-  EXPECT_EQ(split_particles(particles, grid, ground, FissionRule{}), 0u);
+  const PairSearch search = binned(particles);
+  ASSERT_GT(pressure_contrast(particles, search, 0), 0.5);
+  EXPECT_EQ(split_particles(particles, search, ground, FissionRule{}), 0u);
   EXPECT_EQ(particles.size(), 2u);
 }
 
@@ -218,9 +219,9 @@ TEST(ParticleFission, SplitConservesMassAndMomentumOnARandomCloud) {
   const double mass_before = particles.total_mass();
   const Eigen::Vector3d momentum_before = particles.total_momentum();
   const double scale = momentum_scale(particles);
-  const NeighbourGrid grid = binned(particles);
+  const PairSearch search = binned(particles);
 
-  const std::size_t splits = split_particles(particles, grid, ground, FissionRule{0.5, 2.0});
+  const std::size_t splits = split_particles(particles, search, ground, FissionRule{0.5, 2.0});
   // The random pressures make many particles split.
   EXPECT_GT(splits, 100u);
   EXPECT_EQ(particles.size(), 500u + 3u * splits);

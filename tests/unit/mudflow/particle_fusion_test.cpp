@@ -39,10 +39,11 @@ void set_uniform_fields(ParticleSet& particles, double pressure) {
   }
 }
 
-NeighbourGrid binned(const ParticleSet& particles) {
-  NeighbourGrid grid;
-  grid.rebuild(particles, *std::max_element(particles.radius.begin(), particles.radius.end()));
-  return grid;
+// The pair search over the particles' support radii, as the adaptivity uses it.
+PairSearch binned(const ParticleSet& particles) {
+  PairSearch search;
+  search.rebuild(particles, particles.radius, *std::min_element(particles.radius.begin(), particles.radius.end()));
+  return search;
 }
 
 void add_on_ground(ParticleSet& particles, const GroundModel& ground, double mass, double x, double y,
@@ -90,8 +91,8 @@ TEST(ParticleFusion, CalmSquareGroupMerges) {
   ParticleSet particles = square_group(ground);
   particles.level = {2, 1, 3, 2};
   particles.still_time = {0.5, 0.2, 0.7, 0.3};
-  const NeighbourGrid grid = binned(particles);
-  ASSERT_EQ(merge_particles(particles, grid, ground, FusionRule{}), 1u);
+  const PairSearch search = binned(particles);
+  ASSERT_EQ(merge_particles(particles, search, ground, FusionRule{}), 1u);
   ASSERT_EQ(particles.size(), 1u);
   // Mass exact sum; centre to 1e-12 m; z on the ground to 1e-12 m; twice the radius exactly;
   // velocity to 1e-12 m/s; smallest level and still time.
@@ -111,21 +112,21 @@ TEST(ParticleFusion, GroupWithAFastMemberDoesNotMerge) {
   ParticleSet particles = square_group(ground);
   // 1 m/s faster: 0.75 m/s from the group's mean, above speed_difference = 0.5 m/s.
   particles.vx[2] += 1.0;
-  const NeighbourGrid grid = binned(particles);
-  EXPECT_EQ(merge_particles(particles, grid, ground, FusionRule{}), 0u);
+  const PairSearch search = binned(particles);
+  EXPECT_EQ(merge_particles(particles, search, ground, FusionRule{}), 0u);
   EXPECT_EQ(particles.size(), 4u);
   // 0.6 m/s faster: 0.45 m/s from the mean, within the rule: the same group merges.
   particles.vx[2] -= 0.4;
-  EXPECT_EQ(merge_particles(particles, grid, ground, FusionRule{}), 1u);
+  EXPECT_EQ(merge_particles(particles, search, ground, FusionRule{}), 1u);
 }
 
 TEST(ParticleFusion, GroupWithAPressureContrastDoesNotMerge) {
   const GroundModel ground = plane_ground();
   ParticleSet particles = square_group(ground);
   particles.pressure[3] = 40000.0;  // Pa: a contrast of order 1 across the group
-  const NeighbourGrid grid = binned(particles);
-  ASSERT_GT(pressure_contrast(particles, grid, 3), FusionRule{}.threshold);
-  EXPECT_EQ(merge_particles(particles, grid, ground, FusionRule{}), 0u);
+  const PairSearch search = binned(particles);
+  ASSERT_GT(pressure_contrast(particles, search, 3), FusionRule{}.threshold);
+  EXPECT_EQ(merge_particles(particles, search, ground, FusionRule{}), 0u);
   EXPECT_EQ(particles.size(), 4u);
 }
 
@@ -136,8 +137,8 @@ TEST(ParticleFusion, LineOfFourDoesNotMerge) {
     add_on_ground(particles, ground, 28800.0, 90.0 + kSquareSpacing * k, -100.0, {1.0, 0.0, 0.0}, kSquareSpacing);
   }
   set_uniform_fields(particles, 20000.0);
-  const NeighbourGrid grid = binned(particles);
-  EXPECT_EQ(merge_particles(particles, grid, ground, FusionRule{}), 0u);
+  const PairSearch search = binned(particles);
+  EXPECT_EQ(merge_particles(particles, search, ground, FusionRule{}), 0u);
   EXPECT_EQ(particles.size(), 4u);
 }
 
@@ -146,16 +147,16 @@ TEST(ParticleFusion, MergedSizesNeverExceedTheLargestSpacing) {
   {
     // Spacing 6 m: a merge would make 12 m > 10 m.
     ParticleSet particles = lattice(ground, 4, 6.0, 80.0, -120.0, {1.0, 0.0, 0.0});
-    const NeighbourGrid grid = binned(particles);
-    EXPECT_EQ(merge_particles(particles, grid, ground, FusionRule{0.1, 0.5, 10.0}), 0u);
+    const PairSearch search = binned(particles);
+    EXPECT_EQ(merge_particles(particles, search, ground, FusionRule{0.1, 0.5, 10.0}), 0u);
   }
   // A 16 x 16 lattice of 2.5 m merges to 5 m, then to 10 m, then stops (20 m > 10 m).
   ParticleSet particles = lattice(ground, 16, 2.5, 60.0, -140.0, {1.0, 0.5, 0.0});
   const double mass_before = particles.total_mass();
   std::size_t rounds = 0;
   for (;;) {
-    const NeighbourGrid grid = binned(particles);
-    if (merge_particles(particles, grid, ground, FusionRule{0.1, 0.5, 10.0}) == 0) break;
+    const PairSearch search = binned(particles);
+    if (merge_particles(particles, search, ground, FusionRule{0.1, 0.5, 10.0}) == 0) break;
     set_uniform_fields(particles, 20000.0);
     ++rounds;
   }
@@ -186,9 +187,9 @@ TEST(ParticleFusion, MergeConservesMassAndMomentum) {
   const double mass_before = particles.total_mass();
   const Eigen::Vector3d momentum_before = particles.total_momentum();
   const double scale = momentum_scale(particles);
-  const NeighbourGrid grid = binned(particles);
+  const PairSearch search = binned(particles);
 
-  const std::size_t merges = merge_particles(particles, grid, ground, FusionRule{});
+  const std::size_t merges = merge_particles(particles, search, ground, FusionRule{});
   // The jittered calm lattice merges mostly in squares.
   EXPECT_GT(merges, 50u);
   EXPECT_EQ(particles.size(), 400u - 3u * merges);

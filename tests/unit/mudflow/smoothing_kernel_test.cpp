@@ -49,5 +49,17 @@ TEST(SmoothingKernel, CompactSupportAndPeakAtTheCentre) {
   for (double q = 0.05; q < 1.0; q += 0.05) EXPECT_LT(kernel_slope(q * radius, radius), 0.0) << q;
 }
 
+TEST(SmoothingKernel, InlineSampleAgreesWithValueAndSlope) {
+  // 1e-13 relative: the same polynomial, evaluated from 1/R instead of R.
+  for (const double radius : {0.3, 2.4, 24.0}) {
+    for (double q = 0.0; q < 1.2; q += 0.031) {
+      const KernelSample sample = sample_kernel(q * radius, 1.0 / radius);
+      const double value = kernel_value(q * radius, radius), slope = kernel_slope(q * radius, radius);
+      EXPECT_NEAR(sample.value, value, 1e-13 * std::abs(value)) << radius << " " << q;
+      EXPECT_NEAR(sample.slope, slope, 1e-13 * std::abs(slope)) << radius << " " << q;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace talus

@@ -1,0 +1,61 @@
+// Exact search of the interacting pairs when smoothing radii differ (paper 4.1 with the variable
+// radii of flow_density.hpp): i and j interact when their horizontal distance r is below
+// max(R_i, R_j), so a narrow particle must also find the wide ones that reach it.
+//
+// Particles are sorted into radius classes: class k holds the radii in (R0 2^(k-1), R0 2^k]
+// (class 0 every radius up to R0), each class in its own grid of square bins of side
+// R0 2^(k-1). A query with radius R visits, in each class, the bins within max(R, R0 2^k) of the
+// point: every pair lies there whichever of the two particles is wider. So each particle finds
+// all its pairs by itself, whether its neighbours are being evaluated or are between their own
+// steps, and a fine particle beside a coarse one scans fine bins, not coarse ones.
+//
+// The classes keep copies of the positions, radii and masses in bin order, so a query reads
+// contiguous memory; a row of bins is one contiguous range. Every query lists its pairs in the
+// same fixed order (class, row, column, particle index), whatever the thread count.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "talus/mudflow/particle_set.hpp"
+
+namespace talus {
+
+class PairSearch {
+ public:
+  // Sorts every particle into its radius class and bin. radii[i] is particle i's radius (m);
+  // smallest_radius is R0 (m), the upper bound of class 0.
+  void rebuild(const ParticleSet& particles, const std::vector<double>& radii, double smallest_radius);
+
+  // Appends to `slots` (cleared first) the slot of every particle j != self with
+  // (x_j - x)^2 + (y_j - y)^2 < max(radius, R_j)^2, in the fixed order.
+  void find_pairs(double x, double y, double radius, std::uint32_t self, std::vector<std::uint32_t>& slots) const;
+
+  // What a slot holds: the particle's index, horizontal position (m), radius (m), its inverse
+  // (1/m) and mass (kg) at the last rebuild.
+  std::uint32_t index(std::uint32_t slot) const { return index_[slot]; }
+  double x(std::uint32_t slot) const { return x_[slot]; }
+  double y(std::uint32_t slot) const { return y_[slot]; }
+  double radius(std::uint32_t slot) const { return radius_[slot]; }
+  double inverse_radius(std::uint32_t slot) const { return inverse_[slot]; }
+  double mass(std::uint32_t slot) const { return mass_[slot]; }
+
+ private:
+  struct RadiusClass {
+    double reach = 0;                 // m: R0 2^k, the largest radius in the class
+    double bin = 0;                   // m: side of a bin
+    double origin_x = 0, origin_y = 0;  // m: lower-left corner of bin (0, 0)
+    long columns = 0, rows = 0;
+    std::vector<std::uint32_t> start;  // per bin, its first slot; one extra at the end
+  };
+
+  std::size_t scan_class(const RadiusClass& c, double x, double y, double radius, std::uint32_t self,
+                         std::vector<std::uint32_t>& candidates, std::size_t count) const;
+
+  std::vector<RadiusClass> classes_;
+  std::vector<std::uint32_t> index_;  // per slot, in class then bin then index order
+  std::vector<double> x_, y_, radius_, inverse_, mass_;
+};
+
+}  // namespace talus

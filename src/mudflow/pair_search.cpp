@@ -1,0 +1,164 @@
+// Radius classes and their bins (paper 4.1 neighbour search; pair_search.hpp), sorted by a
+// counting sort so the order is fixed.
+#include "talus/mudflow/pair_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace talus {
+namespace {
+
+// Radii up to R0 2^kMostClasses get a class of their own; wider ones share the last (its reach
+// is then raised to their largest radius).
+constexpr int kMostClasses = 24;
+
+// Bins per particle of a class at most (-): the bins cost memory and a pass per rebuild, so a
+// class of few particles spread far apart gets wider bins. The bin size changes only how many
+// candidates a query reads, never which pairs it finds.
+constexpr double kMostBinsPerParticle = 2.0;
+
+int class_of(double radius, double smallest_radius) {
+  int k = 0;
+  double bound = smallest_radius;
+  while (radius > bound && k < kMostClasses) {
+    bound *= 2.0;
+    ++k;
+  }
+  return k;
+}
+
+// Bin coordinate of `offset` (m) from the origin, clamped to [0, count - 1].
+long clamped_bin(double offset, double bin, long count) {
+  const double b = std::floor(offset / bin);
+  if (b < 0.0) return 0;
+  if (b >= static_cast<double>(count - 1)) return count - 1;
+  return static_cast<long>(b);
+}
+
+}  // namespace
+
+void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>& radii, double smallest_radius) {
+  const std::size_t n = particles.size();
+  std::vector<std::uint8_t> class_index(n);
+  int top = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    class_index[i] = static_cast<std::uint8_t>(class_of(radii[i], smallest_radius));
+    top = std::max(top, static_cast<int>(class_index[i]));
+  }
+  const std::size_t class_count = n == 0 ? 0 : static_cast<std::size_t>(top) + 1;
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  std::vector<double> min_x(class_count, kInfinity), min_y(class_count, kInfinity);
+  std::vector<double> max_x(class_count, -kInfinity), max_y(class_count, -kInfinity), widest(class_count, 0.0);
+  std::vector<std::size_t> members(class_count, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = class_index[i];
+    min_x[k] = std::min(min_x[k], particles.x[i]);
+    max_x[k] = std::max(max_x[k], particles.x[i]);
+    min_y[k] = std::min(min_y[k], particles.y[i]);
+    max_y[k] = std::max(max_y[k], particles.y[i]);
+    widest[k] = std::max(widest[k], radii[i]);
+    ++members[k];
+  }
+
+  classes_.assign(class_count, RadiusClass{});
+  std::size_t first_slot = 0;
+  std::vector<std::size_t> first_bin(class_count + 1, 0);  // the classes' bins, end to end
+  for (std::size_t k = 0; k < class_count; ++k) {
+    RadiusClass& c = classes_[k];
+    first_bin[k + 1] = first_bin[k];
+    if (members[k] == 0) continue;
+    c.reach = std::max(std::ldexp(smallest_radius, static_cast<int>(k)), widest[k]);
+    const double width = max_x[k] - min_x[k], height = max_y[k] - min_y[k];
+    const double sparse = std::sqrt(width * height / (kMostBinsPerParticle * static_cast<double>(members[k])));
+    c.bin = std::max(0.5 * c.reach, sparse);
+    c.origin_x = min_x[k];
+    c.origin_y = min_y[k];
+    c.columns = static_cast<long>(width / c.bin) + 1;
+    c.rows = static_cast<long>(height / c.bin) + 1;
+    const std::size_t bins = static_cast<std::size_t>(c.columns * c.rows);
+    c.start.assign(bins + 1, 0);
+    c.start[0] = static_cast<std::uint32_t>(first_slot);
+    first_slot += members[k];
+    first_bin[k + 1] = first_bin[k] + bins;
+  }
+
+  // Counting sort by (class, bin), stable in the particle index.
+  std::vector<std::uint32_t> bin_of(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    RadiusClass& c = classes_[class_index[i]];
+    const long column = clamped_bin(particles.x[i] - c.origin_x, c.bin, c.columns);
+    const long row = clamped_bin(particles.y[i] - c.origin_y, c.bin, c.rows);
+    bin_of[i] = static_cast<std::uint32_t>(row * c.columns + column);
+    ++c.start[bin_of[i] + 1];
+  }
+  for (RadiusClass& c : classes_) {
+    for (std::size_t b = 1; b < c.start.size(); ++b) c.start[b] += c.start[b - 1];
+  }
+  index_.resize(n);
+  x_.resize(n);
+  y_.resize(n);
+  radius_.resize(n);
+  inverse_.resize(n);
+  mass_.resize(n);
+  std::vector<std::uint32_t> next(first_bin.back());
+  for (std::size_t k = 0; k < class_count; ++k) {
+    const std::vector<std::uint32_t>& start = classes_[k].start;
+    if (!start.empty()) std::copy(start.begin(), start.end() - 1, next.begin() + static_cast<long>(first_bin[k]));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t slot = next[first_bin[class_index[i]] + bin_of[i]]++;
+    index_[slot] = static_cast<std::uint32_t>(i);
+    x_[slot] = particles.x[i];
+    y_[slot] = particles.y[i];
+    radius_[slot] = radii[i];
+    inverse_[slot] = 1.0 / radii[i];
+    mass_[slot] = particles.mass[i];
+  }
+}
+
+void PairSearch::find_pairs(double x, double y, double radius, std::uint32_t self,
+                            std::vector<std::uint32_t>& slots) const {
+  thread_local std::vector<std::uint32_t> candidates;  // grown, never shrunk: no clearing per query
+  std::size_t count = 0;
+  for (const RadiusClass& c : classes_) {
+    if (c.columns > 0) count = scan_class(c, x, y, radius, self, candidates, count);
+  }
+  slots.assign(candidates.begin(), candidates.begin() + static_cast<long>(count));
+}
+
+// The bins of one class within max(radius, class reach) of (x, y), row by row: the pairs' slots
+// go to candidates[count...], which grows as needed; returns the new count. The candidates are
+// filtered without branches (about half lie beyond the support, a branch the processor cannot
+// predict).
+std::size_t PairSearch::scan_class(const RadiusClass& c, double x, double y, double radius, std::uint32_t self,
+                                   std::vector<std::uint32_t>& candidates, std::size_t count) const {
+  const double reach = std::max(radius, c.reach);
+  const double left = x - reach - c.origin_x, right = x + reach - c.origin_x;
+  const double bottom = y - reach - c.origin_y, top = y + reach - c.origin_y;
+  const double extent_x = static_cast<double>(c.columns) * c.bin, extent_y = static_cast<double>(c.rows) * c.bin;
+  if (right < 0.0 || bottom > extent_y || top < 0.0 || left > extent_x) return count;
+  const long first_column = clamped_bin(left, c.bin, c.columns), last_column = clamped_bin(right, c.bin, c.columns);
+  const long first_row = clamped_bin(bottom, c.bin, c.rows), last_row = clamped_bin(top, c.bin, c.rows);
+  const double radius2 = radius * radius;
+  const double* px = x_.data();
+  const double* py = y_.data();
+  const double* pr = radius_.data();
+  const std::uint32_t* pi = index_.data();
+  for (long row = first_row; row <= last_row; ++row) {
+    const std::uint32_t from = c.start[static_cast<std::size_t>(row * c.columns + first_column)];
+    const std::uint32_t to = c.start[static_cast<std::size_t>(row * c.columns + last_column + 1)];
+    if (candidates.size() < count + (to - from)) candidates.resize(2 * (count + (to - from)));
+    std::uint32_t* out = candidates.data();
+    for (std::uint32_t s = from; s < to; ++s) {
+      const double dx = x - px[s], dy = y - py[s];
+      const double r2 = dx * dx + dy * dy;
+      const double rs = pr[s];
+      out[count] = s;
+      count += static_cast<std::size_t>(((r2 < radius2) | (r2 < rs * rs)) & (pi[s] != self));
+    }
+  }
+  return count;
+}
+
+}  // namespace talus
