@@ -183,7 +183,7 @@ class MudflowRun {
   std::vector<char> outside_;             // left the valid area during this coarse step
   std::vector<double> outflow_mass_;      // kg: its mass when it left
   std::vector<double> outflow_energy_;    // J: the energy it took with it (flow_guard.hpp)
-  std::vector<char> active_;              // its step ends at the current tick
+  std::vector<std::int8_t> limiter_level_;  // level the limiter sees; -1: ignored (open_steps)
   std::vector<char> erode_flags_;         // entrainment's selection, reused
   std::vector<double> mass_before_;       // kg: masses before an entrainment call, reused
 
@@ -212,7 +212,7 @@ void MudflowRun::resize_work() {
   outside_.assign(n, 0);
   outflow_mass_.assign(n, 0.0);
   outflow_energy_.assign(n, 0.0);
-  active_.assign(n, 0);
+  limiter_level_.resize(n);
 }
 
 // After the particle set changed (adaptivity, a guard restore): work arrays to size, feet
@@ -312,16 +312,16 @@ void MudflowRun::open_steps(const std::vector<std::uint32_t>& list, std::uint64_
     for_each_listed(list, [&](std::size_t i) { kick(i, 0.5 * step_of(level)); });
     return;
   }
-  for (const std::uint32_t i : list) active_[i] = 1;
+  // Each particle's level as its neighbours see it, in one array (one load per neighbour).
+  for (std::size_t j = 0; j < p_.size(); ++j) {
+    limiter_level_[j] = flowing(j) ? static_cast<std::int8_t>(p_.level[j]) : std::int8_t{-1};
+  }
+  for (const std::uint32_t i : list) limiter_level_[i] = static_cast<std::int8_t>(wanted_[i]);
   for_each_listed(list, [&](std::size_t i) {
-    const int limited = limited_level(wanted_[i], neighbours_[i], [&](std::uint32_t j) {
-      if (outside_[j] != 0 || p_.state[j] != ParticleState::flowing) return -1;
-      return static_cast<int>(active_[j] != 0 ? wanted_[j] : p_.level[j]);
-    });
+    const int limited = limited_level(wanted_[i], neighbours_[i], [&](std::uint32_t j) { return limiter_level_[j]; });
     p_.level[i] = static_cast<std::uint8_t>(aligned_level(limited, tick, finest_level_));
     kick(i, 0.5 * step_of(p_.level[i]));
   });
-  for (const std::uint32_t i : list) active_[i] = 0;
 }
 
 // Half a leapfrog kick (paper 4.1 forces): the conservative and viscous acceleration, then the
