@@ -16,7 +16,7 @@ struct PairKernel {
 };
 inline PairKernel pair_kernel(double r, double inverse_i, double inverse_j) {
   const KernelSample a = sample_kernel(r, inverse_i);
-  const KernelSample b = inverse_j == inverse_i ? a : sample_kernel(r, inverse_j);
+  const KernelSample b = sample_kernel(r, inverse_j);
   // At r = 0 (two feet on one spot) the gradient is zero by symmetry.
   return {0.5 * (a.value + b.value), r > 0.0 ? 0.5 * (a.slope + b.slope) / r : 0.0};
 }
