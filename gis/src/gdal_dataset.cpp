@@ -5,6 +5,7 @@
 #include <ogr_spatialref.h>
 
 #include <mutex>
+#include <string>
 #include <stdexcept>
 
 #include "talus/core/errors.hpp"
@@ -72,7 +73,8 @@ void check_written(OGRErr result, const std::filesystem::path& path, const std::
   if (result != OGRERR_NONE) write_failure(path, step);
 }
 
-OGRSpatialReference vector_layer_crs(const std::string& crs_wkt, const std::filesystem::path& path) {
+OGRLayer& create_vector_layer(GDALDataset& dataset, const std::filesystem::path& path, const std::string& crs_wkt,
+                              const VectorLayerSpec& spec) {
   OGRSpatialReference srs;
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   if (crs_wkt.empty()) {
@@ -81,7 +83,18 @@ OGRSpatialReference vector_layer_crs(const std::string& crs_wkt, const std::file
   } else {
     check_written(srs.importFromWkt(crs_wkt.c_str()), path, "reading the CRS");
   }
-  return srs;
+  const std::string identifier = std::string("IDENTIFIER=") + spec.identifier;
+  const std::string description = std::string("DESCRIPTION=") + spec.description;
+  const char* const options[] = {identifier.c_str(), description.c_str(), nullptr};
+  OGRLayer* layer = dataset.CreateLayer(spec.name, &srs, spec.geometry, const_cast<char**>(options));
+  if (layer == nullptr) write_failure(path, "creating the layer");
+  for (const VectorField& field : spec.fields) {
+    OGRFieldDefn definition(field.name, field.type);
+    definition.SetAlternativeName(field.alias);
+    check_written(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
+  }
+  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) write_failure(path, "setting the metadata");
+  return *layer;
 }
 
 }  // namespace talus::gis

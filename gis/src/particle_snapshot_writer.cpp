@@ -27,21 +27,15 @@
 namespace talus::gis {
 namespace {
 
-struct Field {
-  const char* name;
-  OGRFieldType type;
-  const char* alias;
-};
-
 // The attributes in the layer's order.
 constexpr std::array kFields{
-    Field{"time_s", OFTReal, "Time after release (s)"},
-    Field{"start_time", OFTDateTime, "Shown from (2000-01-01 00:00:00 = release)"},
-    Field{"end_time", OFTDateTime, "Shown until"},
-    Field{"depth_m", OFTReal, "Flow depth (m)"},
-    Field{"speed_m_s", OFTReal, "Speed (m/s)"},
-    Field{"mass_kg", OFTReal, "Mass (kg)"},
-    Field{"radius_m", OFTReal, "Particle radius (m)"},
+    VectorField{"time_s", OFTReal, "Time after release (s)"},
+    VectorField{"start_time", OFTDateTime, "Shown from (2000-01-01 00:00:00 = release)"},
+    VectorField{"end_time", OFTDateTime, "Shown until"},
+    VectorField{"depth_m", OFTReal, "Flow depth (m)"},
+    VectorField{"speed_m_s", OFTReal, "Speed (m/s)"},
+    VectorField{"mass_kg", OFTReal, "Mass (kg)"},
+    VectorField{"radius_m", OFTReal, "Particle radius (m)"},
 };
 
 // The flow_depth_max classes (m, gis/styles/make_styles.py): upper limits and one colour per
@@ -58,23 +52,11 @@ constexpr double kEndGap = 0.001;
 // Seconds of 2000-01-01T00:00:00Z after 1970-01-01T00:00:00Z.
 constexpr std::time_t kEpochSeconds = 946684800;
 
-OGRLayer& create_layer(GDALDataset& dataset, const std::string& crs_wkt, const std::filesystem::path& path) {
-  OGRSpatialReference srs = vector_layer_crs(crs_wkt, path);
-  const char* const options[] = {"IDENTIFIER=Mud-flow particles",
-                                 "DESCRIPTION=Mud-flow particle snapshots: foot of each particle's column, x and y in "
-                                 "the CRS, z ground elevation (m); shown from start_time to end_time, "
-                                 "2000-01-01T00:00:00Z being the release",
-                                 nullptr};
-  OGRLayer* layer = dataset.CreateLayer("particles", &srs, wkbPoint25D, const_cast<char**>(options));
-  if (layer == nullptr) write_failure(path, "creating the layer");
-  for (const Field& field : kFields) {
-    OGRFieldDefn definition(field.name, field.type);
-    definition.SetAlternativeName(field.alias);
-    check_written(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
-  }
-  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) write_failure(path, "setting the metadata");
-  return *layer;
-}
+// The GeoPackage layer, its metadata and attributes.
+const VectorLayerSpec kLayer{"particles", wkbPoint25D, "Mud-flow particles",
+                             "Mud-flow particle snapshots: foot of each particle's column, x and y in the CRS, z ground "
+                             "elevation (m); shown from start_time to end_time, 2000-01-01T00:00:00Z being the release",
+                             kFields};
 
 // Sets a DateTime field to the epoch + `seconds` (s), to the millisecond, in UTC.
 void set_time(OGRFeature& feature, const char* field, double seconds) {
@@ -136,7 +118,7 @@ void write_particle_snapshots(const std::filesystem::path& path, const std::vect
   if (!dataset) write_failure(path, "creating the GeoPackage");
   CPLErrorReset();  // a temporary name's extension other than .gpkg is only a warning
   try {
-    OGRLayer& layer = create_layer(*dataset, crs_wkt, path);
+    OGRLayer& layer = create_vector_layer(*dataset, path, crs_wkt, kLayer);
     check_written(dataset->StartTransaction(), path, "starting the transaction");
     for (std::size_t k = 0; k < snapshots.size(); ++k) {
       const double next = k + 1 < snapshots.size() ? snapshots[k + 1].time : snapshots[k].time + interval;

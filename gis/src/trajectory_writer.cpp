@@ -22,38 +22,20 @@
 namespace talus::gis {
 namespace {
 
-struct Field {
-  const char* name;
-  OGRFieldType type;
-  const char* alias;
-};
-
 // The attributes in the layer's order; gis/styles/make_styles.py names the same fields.
 constexpr std::array kFields{
-    Field{"run_id", OFTInteger64, "Run"},
-    Field{"source_id", OFTInteger64, "Release source"},
-    Field{"stop_reason", OFTString, "Stop reason"},
-    Field{"max_energy_kj", OFTReal, "Maximum kinetic energy (kJ)"},
-    Field{"runout_length_m", OFTReal, "Runout length (m)"},
+    VectorField{"run_id", OFTInteger64, "Run"},
+    VectorField{"source_id", OFTInteger64, "Release source"},
+    VectorField{"stop_reason", OFTString, "Stop reason"},
+    VectorField{"max_energy_kj", OFTReal, "Maximum kinetic energy (kJ)"},
+    VectorField{"runout_length_m", OFTReal, "Runout length (m)"},
 };
 
-OGRLayer& create_layer(GDALDataset& dataset, const std::string& crs_wkt, const std::filesystem::path& path) {
-  OGRSpatialReference srs = vector_layer_crs(crs_wkt, path);
-  const char* const options[] = {"IDENTIFIER=Rock-fall trajectories",
-                                 "DESCRIPTION=Sampled rock-fall trajectories: centre of mass of the rock, "
-                                 "x and y in the CRS, z elevation (m); energy in kJ, length in m",
-                                 nullptr};
-  OGRLayer* layer = dataset.CreateLayer("trajectories", &srs, wkbLineString25D,
-                                        const_cast<char**>(options));
-  if (layer == nullptr) write_failure(path, "creating the layer");
-  for (const Field& field : kFields) {
-    OGRFieldDefn definition(field.name, field.type);
-    definition.SetAlternativeName(field.alias);
-    check_written(layer->CreateField(&definition), path, std::string("creating the field ") + field.name);
-  }
-  if (layer->SetMetadataItem("TALUS_VERSION", TALUS_VERSION) != CE_None) write_failure(path, "setting the metadata");
-  return *layer;
-}
+// The GeoPackage layer, its metadata and attributes.
+const VectorLayerSpec kLayer{"trajectories", wkbLineString25D, "Rock-fall trajectories",
+                             "Sampled rock-fall trajectories: centre of mass of the rock, x and y in the CRS, z elevation "
+                             "(m); energy in kJ, length in m",
+                             kFields};
 
 void add_feature(OGRLayer& layer, const TrajectoryLine& line, const std::filesystem::path& path) {
   OGRFeature feature(layer.GetLayerDefn());
@@ -95,7 +77,7 @@ void write_trajectories(const std::filesystem::path& path, const std::vector<Tra
   if (!dataset) write_failure(path, "creating the GeoPackage");
   CPLErrorReset();  // a temporary name's extension other than .gpkg is only a warning
   try {
-    OGRLayer& layer = create_layer(*dataset, crs_wkt, path);
+    OGRLayer& layer = create_vector_layer(*dataset, path, crs_wkt, kLayer);
     check_written(dataset->StartTransaction(), path, "starting the transaction");
     for (const TrajectoryLine& line : lines) add_feature(layer, line, path);
     check_written(dataset->CommitTransaction(), path, "committing the features");

@@ -1,13 +1,15 @@
 // Small shared pieces of the GDAL boundary: registering drivers once, opening a file as a
 // raster with a one-line error naming the file, reading a dataset's grid spec, and the
-// failures and CRS of the vector layers Talus writes.
+// failures and the creation of the vector layers Talus writes.
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string>
 
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
 
 #include "talus/core/grid_spec.hpp"
 
@@ -38,9 +40,28 @@ std::string wkt_of(const OGRSpatialReference* srs);
 // write_failure(path, step) unless `result` is OGRERR_NONE.
 void check_written(OGRErr result, const std::filesystem::path& path, const std::string& step);
 
-// The CRS of a vector layer written to `path`. Local coordinates (empty WKT) get the
-// GeoPackage's "Undefined Cartesian SRS" (srs_id -1, metres): GDAL 3.6 stores a layer without CRS
-// as srs_id 0, the undefined *geographic* one.
-OGRSpatialReference vector_layer_crs(const std::string& crs_wkt, const std::filesystem::path& path);
+// One attribute of a vector layer Talus writes: its name, type and the alias QGIS shows.
+struct VectorField {
+  const char* name;
+  OGRFieldType type;
+  const char* alias;
+};
+
+// What create_vector_layer makes: the layer's name and geometry type, the GeoPackage
+// identifier and description QGIS shows, and the attributes in order.
+struct VectorLayerSpec {
+  const char* name;
+  OGRwkbGeometryType geometry;
+  const char* identifier;
+  const char* description;
+  std::span<const VectorField> fields;
+};
+
+// Creates the layer in `dataset` (being written to `path`) with its fields and a TALUS_VERSION
+// metadata item; write_failure on any error. The CRS is `crs_wkt`; local coordinates (empty
+// WKT) get the GeoPackage's "Undefined Cartesian SRS" (srs_id -1, metres): GDAL 3.6 stores a
+// layer without CRS as srs_id 0, the undefined *geographic* one.
+OGRLayer& create_vector_layer(GDALDataset& dataset, const std::filesystem::path& path, const std::string& crs_wkt,
+                              const VectorLayerSpec& spec);
 
 }  // namespace talus::gis
