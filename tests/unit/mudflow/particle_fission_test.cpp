@@ -9,39 +9,16 @@
 
 #include <gtest/gtest.h>
 
-#include "../../validation/synthetic_ground.hpp"
+#include "adaptivity_fixtures.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 
 namespace talus {
 namespace {
 
-// A plane z = 500 - 0.2 x + 0.1 y (m) over x in [0, 200] m, y in [-200, 0] m.
-GroundModel plane_ground() {
-  return testing_ground::make_ground(
-      testing_ground::local_spec(41, 41, 5.0), [](double x, double y) { return 500.0 - 0.2 * x + 0.1 * y; },
-      testing_ground::fast_material(0.0, 0.0, 0.5));
-}
-
-double radius_of_spacing(double spacing) { return kSupportPerSpacing * spacing; }
-
-// Areal density (kg/m2) of every particle by the symmetrised SPH sum over all particles.
-void set_sph_density(ParticleSet& particles) {
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    double sum = 0;
-    for (std::size_t j = 0; j < particles.size(); ++j) {
-      const double r = std::hypot(particles.x[i] - particles.x[j], particles.y[i] - particles.y[j]);
-      sum += particles.mass[j] * 0.5 * (kernel_value(r, particles.radius[i]) + kernel_value(r, particles.radius[j]));
-    }
-    particles.density[i] = sum;
-  }
-}
-
-// The pair search over the particles' support radii, as the adaptivity uses it.
-PairSearch binned(const ParticleSet& particles) {
-  PairSearch search;
-  search.rebuild(particles, particles.radius, *std::min_element(particles.radius.begin(), particles.radius.end()));
-  return search;
-}
+using adaptivity_fixtures::binned;
+using adaptivity_fixtures::plane_ground;
+using adaptivity_fixtures::radius_of_spacing;
+using adaptivity_fixtures::set_sph_density;
 
 // A square lattice of columns x columns particles of `spacing` (m) centred on (cx, cy), each of
 // the mass of a 1 m deep column of mud (kg).
