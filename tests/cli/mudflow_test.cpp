@@ -45,10 +45,6 @@ std::vector<std::string> with(std::vector<std::string> arguments, const std::vec
 
 int run_python(const std::string& arguments) { return std::system(("/usr/bin/python3 " + arguments).c_str()); }
 
-int check_layers(const fs::path& out, const fs::path& dem) {
-  return run_python((test::shared_dir() / "tools/check_layers.py").string() + " mudflow " + out.string() + " " + dem.string());
-}
-
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream file(path);
   return nlohmann::json::parse(file);
@@ -86,7 +82,7 @@ test::ProgramResult SampleMudflow::result_;
 
 TEST_F(SampleMudflow, WritesEveryLayerOfTheContract) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
-  EXPECT_EQ(check_layers(root_ / "out", test::source_dir() / "sample_dem/dem.tif"), 0);
+  EXPECT_EQ(test::check_layers("mudflow", root_ / "out", test::source_dir() / "sample_dem/dem.tif"), 0);
   EXPECT_NE(result_.out.find("Layers written to"), std::string::npos);
   EXPECT_NE(result_.err.find("Progress: 100%"), std::string::npos);
   EXPECT_FALSE(fs::exists(root_ / "out" / "erosion_depth.tif"));  // no --erodible
@@ -211,7 +207,7 @@ TEST(MudflowErosion, EntrainsFromTheErodibleRaster) {
   const auto eroding = test::run_talus(
       with(sample_arguments(root / "eroding", "1"), {"--erodible", (root / "erodible.tif").string()}), root);
   ASSERT_EQ(eroding.exit_code, 0) << eroding.err;
-  EXPECT_EQ(check_layers(root / "eroding", test::source_dir() / "sample_dem/dem.tif"), 0);
+  EXPECT_EQ(test::check_layers("mudflow", root / "eroding", test::source_dir() / "sample_dem/dem.tif"), 0);
   ASSERT_TRUE(fs::exists(root / "eroding" / "erosion_depth.tif"));
   const nlohmann::json record = read_json(root / "eroding" / "run.json");
   EXPECT_EQ(record["inputs"]["erodible"]["sha256"].get<std::string>().size(), 64u);
@@ -238,7 +234,7 @@ TEST(MudflowStHelens, WritesEveryLayerInLocalCoordinates) {
                                        (root / "out").string(), "--threads", "1"},
                                       root);
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_EQ(check_layers(root / "out", data / "pre_runout_DEM.asc"), 0);
+  EXPECT_EQ(test::check_layers("mudflow", root / "out", data / "pre_runout_DEM.asc"), 0);
   const nlohmann::json record = read_json(root / "out" / "run.json");
   EXPECT_GT(record["volumes_m3"]["released"].get<double>(), 0.0);
   EXPECT_NEAR(volume_balance(record), 0.0, 0.02);

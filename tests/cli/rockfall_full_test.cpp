@@ -44,11 +44,7 @@ std::map<std::string, test::ProgramResult> SampleFullMode::results_;
 
 TEST_F(SampleFullMode, WritesEveryLayerOfTheContract) {
   for (const auto& [name, result] : results_) ASSERT_EQ(result.exit_code, 0) << name << ": " << result.err;
-  const auto dem = test::source_dir() / "sample_dem/dem.tif";
-  const auto checker = test::shared_dir() / "tools/check_layers.py";
-  const std::string command =
-      "/usr/bin/python3 " + checker.string() + " rockfall " + (root_ / "t2").string() + " " + dem.string();
-  EXPECT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(test::check_layers("rockfall", root_ / "t2", test::source_dir() / "sample_dem/dem.tif"), 0);
 }
 
 TEST_F(SampleFullMode, RecordsTheModeAndBooksDeformationLosses) {

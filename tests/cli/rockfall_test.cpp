@@ -47,9 +47,7 @@ std::map<std::string, test::ProgramResult> SampleRockfall::results_;
 
 TEST_F(SampleRockfall, WritesEveryLayerOfTheContract) {
   for (const auto& [name, result] : results_) ASSERT_EQ(result.exit_code, 0) << name << ": " << result.err;
-  const auto dem = test::source_dir() / "sample_dem/dem.tif";
-  const auto checker = test::shared_dir() / "tools/check_layers.py";
-  EXPECT_EQ(run_python(checker.string() + " rockfall " + (root_ / "seed1_t2").string() + " " + dem.string()), 0);
+  EXPECT_EQ(test::check_layers("rockfall", root_ / "seed1_t2", test::source_dir() / "sample_dem/dem.tif"), 0);
   EXPECT_NE(results_["seed1_t2"].out.find("Layers written to"), std::string::npos);
   EXPECT_NE(results_["seed1_t2"].err.find("Progress: 100%"), std::string::npos);
   for (const auto& entry : fs::directory_iterator(root_ / "seed1_t2")) {

@@ -15,4 +15,8 @@ struct ProgramResult {
 
 ProgramResult run_talus(const std::vector<std::string>& arguments, const std::filesystem::path& working_folder);
 
+// The exit code of ../shared/tools/check_layers.py on an output folder: `kind` is "rockfall" or
+// "mudflow", `dem` the run's DEM (0: every layer of the contract is there and right).
+int check_layers(const std::string& kind, const std::filesystem::path& out, const std::filesystem::path& dem);
+
 }  // namespace talus::test
