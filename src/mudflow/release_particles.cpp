@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <vector>
 
 #include "talus/core/counter_random.hpp"
@@ -65,6 +66,27 @@ void release_column(const GroundModel& ground, const ReleaseLayout& layout, cons
   }
 }
 
+// The most particles a release may create: each costs about 1 kB with its neighbour list, and a
+// flow of more would take days on the machines Talus is meant for. A particle size given in
+// millimetres instead of metres is refused with a message instead of exhausting the memory.
+constexpr double kMostReleasedParticles = 4e6;
+
+// Refuses a release that would create more than kMostReleasedParticles (InputError, exit code 2).
+void check_particle_count(const GridSpec& spec, const ReleaseSet& release, const ReleaseLayout& layout) {
+  double columns = 0;
+  for (std::size_t cell = 0; cell < release.depth.size(); ++cell) columns += release.depth[cell] > 0.0f ? 1.0 : 0.0;
+  for (const ReleasePoint& point : release.points) columns += point.depth > 0.0 ? 1.0 : 0.0;
+  const double places = std::max(1.0, std::round(spec.cell_width() / layout.spacing)) *
+                        std::max(1.0, std::round(spec.cell_height() / layout.spacing));
+  if (columns * places > kMostReleasedParticles) {
+    std::ostringstream message;
+    message << "mud flow: the release would create " << std::llround(columns * places) << " particles (more than "
+            << std::llround(kMostReleasedParticles) << ") " << layout.spacing
+            << " m apart: use a larger particle size";
+    throw InputError(message.str());
+  }
+}
+
 // Refuses layouts no release can be built from (InputError, exit code 2).
 void check_layout(const ReleaseLayout& layout) {
   if (!(layout.spacing > 0.0 && std::isfinite(layout.spacing))) {
@@ -82,6 +104,7 @@ void check_layout(const ReleaseLayout& layout) {
 ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& release, const ReleaseLayout& layout) {
   check_layout(layout);
   const GridSpec& spec = ground.spec();
+  check_particle_count(spec, release, layout);
   const Grid<double>& dem = ground.elevation_grid();
   const CellLattice lattice = lattice_for(spec, layout.spacing);
   ParticleSet particles;

@@ -3,6 +3,7 @@
 #include "talus/mudflow/release_particles.hpp"
 
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -147,6 +148,25 @@ TEST(ReleaseParticles, RefusesLayoutsOutOfRangeAndOtherGrids) {
   EXPECT_THROW(release_particles(ground, release, layout), InputError);
   release.depth = Grid<float>(local_spec(5, 6, 5.0), 1.0f);
   EXPECT_THROW(release_particles(ground, release, ReleaseLayout{}), GridMismatch);
+}
+
+TEST(ReleaseParticles, RefusesAReleaseOfMillionsOfParticles) {
+  // 36 cells of 5 m at 1 cm spacing would be 36 x 500^2 = 9 million particles (limit 4 million):
+  // a particle size typed in centimetres, refused before any particle is made.
+  const GridSpec spec = local_spec(6, 6, 5.0);
+  const GroundModel ground = hill(spec);
+  ReleaseSet release;
+  release.depth = Grid<float>(spec, 1.0f);
+  ReleaseLayout layout;
+  layout.spacing = 0.01;
+  try {
+    release_particles(ground, release, layout);
+    FAIL() << "no InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("9000000 particles"), std::string::npos) << error.what();
+  }
+  layout.spacing = 0.05;  // at most 36 x 100^2 = 360,000 particles: accepted
+  EXPECT_NO_THROW(release_particles(ground, release, layout));
 }
 
 }  // namespace
