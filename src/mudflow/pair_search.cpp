@@ -40,11 +40,11 @@ long clamped_bin(double offset, double bin, long count) {
 
 void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>& radii, double smallest_radius) {
   const std::size_t n = particles.size();
-  std::vector<std::uint8_t> class_index(n);
+  class_index_.resize(n);
   int top = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    class_index[i] = static_cast<std::uint8_t>(class_of(radii[i], smallest_radius));
-    top = std::max(top, static_cast<int>(class_index[i]));
+    class_index_[i] = static_cast<std::uint8_t>(class_of(radii[i], smallest_radius));
+    top = std::max(top, static_cast<int>(class_index_[i]));
   }
   const std::size_t class_count = n == 0 ? 0 : static_cast<std::size_t>(top) + 1;
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -52,7 +52,7 @@ void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>
   std::vector<double> max_x(class_count, -kInfinity), max_y(class_count, -kInfinity), widest(class_count, 0.0);
   std::vector<std::size_t> members(class_count, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t k = class_index[i];
+    const std::size_t k = class_index_[i];
     min_x[k] = std::min(min_x[k], particles.x[i]);
     max_x[k] = std::max(max_x[k], particles.x[i]);
     min_y[k] = std::min(min_y[k], particles.y[i]);
@@ -61,12 +61,14 @@ void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>
     ++members[k];
   }
 
-  classes_.assign(class_count, RadiusClass{});
+  classes_.resize(class_count);  // each class keeps its bins' storage from the last rebuild
   std::size_t first_slot = 0;
   std::vector<std::size_t> first_bin(class_count + 1, 0);  // the classes' bins, end to end
   for (std::size_t k = 0; k < class_count; ++k) {
     RadiusClass& c = classes_[k];
     first_bin[k + 1] = first_bin[k];
+    c.columns = c.rows = 0;
+    c.start.clear();
     if (members[k] == 0) continue;
     c.reach = std::max(std::ldexp(smallest_radius, static_cast<int>(k)), widest[k]);
     const double width = max_x[k] - min_x[k], height = max_y[k] - min_y[k];
@@ -84,13 +86,13 @@ void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>
   }
 
   // Counting sort by (class, bin), stable in the particle index.
-  std::vector<std::uint32_t> bin_of(n);
+  bin_of_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    RadiusClass& c = classes_[class_index[i]];
+    RadiusClass& c = classes_[class_index_[i]];
     const long column = clamped_bin(particles.x[i] - c.origin_x, c.bin, c.columns);
     const long row = clamped_bin(particles.y[i] - c.origin_y, c.bin, c.rows);
-    bin_of[i] = static_cast<std::uint32_t>(row * c.columns + column);
-    ++c.start[bin_of[i] + 1];
+    bin_of_[i] = static_cast<std::uint32_t>(row * c.columns + column);
+    ++c.start[bin_of_[i] + 1];
   }
   for (RadiusClass& c : classes_) {
     for (std::size_t b = 1; b < c.start.size(); ++b) c.start[b] += c.start[b - 1];
@@ -101,13 +103,13 @@ void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>
   radius_.resize(n);
   inverse_.resize(n);
   mass_.resize(n);
-  std::vector<std::uint32_t> next(first_bin.back());
+  next_slot_.resize(first_bin.back());
   for (std::size_t k = 0; k < class_count; ++k) {
     const std::vector<std::uint32_t>& start = classes_[k].start;
-    if (!start.empty()) std::copy(start.begin(), start.end() - 1, next.begin() + static_cast<long>(first_bin[k]));
+    if (!start.empty()) std::copy(start.begin(), start.end() - 1, next_slot_.begin() + static_cast<long>(first_bin[k]));
   }
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t slot = next[first_bin[class_index[i]] + bin_of[i]]++;
+    const std::uint32_t slot = next_slot_[first_bin[class_index_[i]] + bin_of_[i]]++;
     index_[slot] = static_cast<std::uint32_t>(i);
     x_[slot] = particles.x[i];
     y_[slot] = particles.y[i];

@@ -56,6 +56,10 @@ class PairSearch {
   std::vector<RadiusClass> classes_;
   std::vector<std::uint32_t> index_;  // per slot, in class then bin then index order
   std::vector<double> x_, y_, radius_, inverse_, mass_;
+  // Work arrays of rebuild, kept so that the rebuild at every substep does not allocate.
+  std::vector<std::uint8_t> class_index_;  // per particle
+  std::vector<std::uint32_t> bin_of_;      // per particle, its bin within its class
+  std::vector<std::uint32_t> next_slot_;   // per bin of all classes, the next free slot
 };
 
 }  // namespace talus
