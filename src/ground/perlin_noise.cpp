@@ -22,11 +22,11 @@ constexpr std::uint64_t kHashY = 0xD1B54A32D192ED03ULL;
 // negative coordinates are fine): one xor-shift-multiply-xor-shift round (a single round of the
 // mixers of Steele et al.'s SplitMix64 family), whose top table_bits bits index Tab[].
 // Neighbouring lattice points differ in h by kHashX or kHashY, so the four corners of a square
-// share one combination.
+// share one combination. The round's last step, h ^= h >> 32, leaves the top 32 bits of h as
+// they are, and table_bits <= 20 reads no others: the index is the product's top bits.
 std::size_t finalised_hash(std::uint64_t h, int table_bits) {
   h ^= h >> 32;
   h *= 0xD6E8FEB86659FD93ULL;
-  h ^= h >> 32;
   return static_cast<std::size_t>(h >> (64 - table_bits));
 }
 

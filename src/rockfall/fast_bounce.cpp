@@ -143,8 +143,8 @@ class FastBounceRun {
     }
     const FlightArc arc(from, end, dt);
     const auto clearance_at = [&](double tau) {
-      const PointState s = arc.at(tau);
-      return s.position.z() - half_height(rotated(tau)) - ground_.height(s.position.x(), s.position.y());
+      const Eigen::Vector3d x = arc.position(tau);
+      return x.z() - half_height_after(tau) - ground_.height(x.x(), x.y());
     };
     const double tau = last_time_above(clearance_at, 0.0, clearance_, dt, clearance, kLandingTolerance);
     const Eigen::Quaterniond q_touch = rotated(tau);
@@ -185,7 +185,7 @@ class FastBounceRun {
       const double tolerance = parameters_.contact_tolerance;
       const auto rise_margin = [&](double tau) {
         const Eigen::Vector3d x = p_ + tau * v_ + 0.5 * tau * tau * a;
-        return x.z() - half_height(rotated(tau)) - ground_.height(x.x(), x.y()) + tolerance;
+        return x.z() - half_height_after(tau) - ground_.height(x.x(), x.y()) + tolerance;
       };
       const double tau = last_time_above(rise_margin, 0.0, tolerance, move.duration, gap + tolerance,
                                          kRiseTolerance * tolerance);
@@ -306,11 +306,14 @@ class FastBounceRun {
 
   // Orientation after `duration` seconds of constant spin (spheres need none).
   Eigen::Quaterniond rotated(double duration) const {
+    if (!oriented_) return q_;
     const double angle = w_.norm() * duration;
-    if (!oriented_ || angle == 0.0) return q_;
+    if (angle == 0.0) return q_;
     return Eigen::Quaterniond(Eigen::AngleAxisd(angle, w_.normalized())) * q_;
   }
   double half_height(const Eigen::Quaterniond& q) const { return oriented_ ? rock_.half_height(q) : h_; }
+  // Half height after `duration` seconds of spin, for the crossing searches' trial times.
+  double half_height_after(double duration) const { return oriented_ ? rock_.half_height(rotated(duration)) : h_; }
 
   void move_to(const PointState& state, const Eigen::Quaterniond& q, double h, double duration) {
     travelled_ += (state.position - p_).norm();

@@ -2,7 +2,6 @@
 #include "talus/rockfall/flight.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace talus {
 
@@ -38,18 +37,6 @@ PointState Flight::advance(const PointState& start, double duration) const {
           start.velocity + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)};
 }
 
-// Paper 3.2: |g - k |v| v| <= g + k |v|^2, the bound the step lengths use.
-double Flight::acceleration_bound(const Eigen::Vector3d& velocity) const {
-  return gravity_ + drag_per_mass_ * velocity.squaredNorm();
-}
-
-// The drag's time scale is 1 / (k |v|), and v_terminal / g = 1 / (k v_terminal) at low speed:
-// two hundredths of it keep RK4's local error (order 5) far below the tests' 1e-6.
-double Flight::max_duration(const Eigen::Vector3d& velocity) const {
-  if (!has_drag()) return std::numeric_limits<double>::infinity();
-  return 0.02 / (drag_per_mass_ * (velocity.norm() + terminal_speed_));
-}
-
 FlightArc::FlightArc(const PointState& start, const PointState& end, double duration)
     : start_(start), end_(end), duration_(duration) {}
 
@@ -59,18 +46,21 @@ FlightArc::FlightArc(const PointState& start, const PointState& end, double dura
 PointState FlightArc::at(double tau) const {
   if (duration_ <= 0.0) return start_;
   const double s = tau / duration_;
-  const double s2 = s * s, s3 = s2 * s;
+  const double s2 = s * s;
   const double T = duration_;
-  const Eigen::Vector3d position = (2.0 * s3 - 3.0 * s2 + 1.0) * start_.position + (T * (s3 - 2.0 * s2 + s)) * start_.velocity +
-                                   (3.0 * s2 - 2.0 * s3) * end_.position + (T * (s3 - s2)) * end_.velocity;
   const Eigen::Vector3d velocity = ((6.0 * s2 - 6.0 * s) / T) * (start_.position - end_.position) +
                                    (3.0 * s2 - 4.0 * s + 1.0) * start_.velocity + (3.0 * s2 - 2.0 * s) * end_.velocity;
-  return {position, velocity};
+  return {position(tau), velocity};
 }
 
-// Positive root of (a / 2) t^2 + speed t - length = 0, written without cancellation.
-double duration_for_length(double speed, double acceleration, double length) {
-  return 2.0 * length / (speed + std::sqrt(speed * speed + 2.0 * acceleration * length));
+// The position part of at(): what the ground-crossing searches need at each trial time.
+Eigen::Vector3d FlightArc::position(double tau) const {
+  if (duration_ <= 0.0) return start_.position;
+  const double s = tau / duration_;
+  const double s2 = s * s, s3 = s2 * s;
+  const double T = duration_;
+  return (2.0 * s3 - 3.0 * s2 + 1.0) * start_.position + (T * (s3 - 2.0 * s2 + s)) * start_.velocity +
+         (3.0 * s2 - 2.0 * s3) * end_.position + (T * (s3 - s2)) * end_.velocity;
 }
 
 }  // namespace talus

@@ -61,6 +61,46 @@ TEST(PerlinNoise, SameSeedGivesTheSameField) {
   }
 }
 
+// Values and gradients of one field, recorded (as hexadecimal floats) from the implementation
+// before the hash was shortened to the bits the table index reads: the same seed must keep
+// giving the same field, and so the same layers, bit for bit (tolerance zero), at table sizes
+// 2^8 (stochastic rock fall), 2^12 (the default) and 2^20, on both sides of the origin and at
+// UTM-sized coordinates.
+TEST(PerlinNoise, TheFieldOfASeedIsPinnedBitForBit) {
+  struct Pinned {
+    int table_bits;
+    double x, y, value, dx, dy;
+  };
+  const Pinned pinned[] = {
+      {8, 0.37, -1.62, 0x1.3e2458733c353p-5, -0x1.04427689fe1cap-4, 0x1.6f19eee2f27fep-8},
+      {8, -12.71, 5.05, -0x1.5e82732bbc9bap-6, 0x1.99ba589fc217dp-5, 0x1.372e208e3390ep-2},
+      {8, 612345.678, 5102345.125, 0x1.9702dfa09c79bp-10, -0x1.46033756d65e7p-3, 0x1.e37d759018b3dp-4},
+      {8, -3000.25, -4000.75, -0x1.38ec0066d3391p-4, 0x1.1729feff065e7p-3, 0x1.54b04e622c1f2p-3},
+      {12, 0.37, -1.62, -0x1.8772d2fdcbaf2p-4, 0x1.8e9e1ade75205p-3, 0x1.532f6ff52c886p-4},
+      {12, -12.71, 5.05, -0x1.225c80bcba248p-4, 0x1.90016dab3da41p-3, 0x1.61b672294356bp-3},
+      {12, 612345.678, 5102345.125, -0x1.08949873ef913p-4, 0x1.07d08f82dc2bap-3, -0x1.c515909b0da6bp-5},
+      {12, -3000.25, -4000.75, -0x1.61483e4656f7p-7, 0x1.ad6540df4bbe8p-5, 0x1.f71c3170dae43p-3},
+      {20, 0.37, -1.62, 0x1.0e758d3c95a62p-6, -0x1.b9dccfd8f4a5p-4, 0x1.38dba038af486p-5},
+      {20, -12.71, 5.05, -0x1.62acdae50b9afp-4, 0x1.1ecbcd4bddecep-3, 0x1.649a97e953786p-4},
+      {20, 612345.678, 5102345.125, -0x1.7ba5a37b167edp-13, 0x1.33bb8dfc7a32bp-3, -0x1.5faadafe87ap-4},
+      {20, -3000.25, -4000.75, 0x1.539629517c6b8p-6, 0x1.0e6be89968154p-3, -0x1.9fac7245085b4p-8},
+  };
+  for (const Pinned& p : pinned) {
+    PerlinParameters parameters;
+    parameters.base_frequency = 0.9;
+    parameters.amplitude = 0.25;
+    parameters.octaves = 3;
+    parameters.seed = 20261122;
+    parameters.table_bits = p.table_bits;
+    const PerlinNoise noise(parameters);
+    const NoiseSample sample = noise.sample(p.x, p.y);
+    EXPECT_EQ(noise(p.x, p.y), p.value) << p.table_bits << " " << p.x;
+    EXPECT_EQ(sample.value, p.value) << p.table_bits << " " << p.x;
+    EXPECT_EQ(sample.gradient.x(), p.dx) << p.table_bits << " " << p.x;
+    EXPECT_EQ(sample.gradient.y(), p.dy) << p.table_bits << " " << p.x;
+  }
+}
+
 TEST(PerlinNoise, DifferentSeedGivesAnotherField) {
   // At the lattice nodes of a one-octave field the noise is Tab[Hash(i, j)] itself, so two seeds
   // give two independent tables: the correlation is within 5 / sqrt(table size) of zero.

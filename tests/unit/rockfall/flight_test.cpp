@@ -81,5 +81,20 @@ TEST(FlightArc, ReproducesTheParabolaAndFollowsTheDragStep) {
   }
 }
 
+TEST(FlightArc, PositionIsTheStatesPositionBitForBit) {
+  // The crossing searches ask only for the position; it must be at(tau)'s exactly (tolerance
+  // zero), so that a landing found with it lies where the state says.
+  const Flight dragged(kG, AirDrag{1.225, 0.1, 0.8}, 1400.0);
+  const PointState start{{612000.5, 5102000.25, 1830.0}, {11.0, -6.5, 4.0}};
+  const double duration = 0.09;
+  const FlightArc arc(start, dragged.advance(start, duration), duration);
+  for (const double tau : {0.0, 1e-9, 0.013, 0.045, 0.0899999, 0.09}) {
+    const PointState state = arc.at(tau);
+    EXPECT_EQ(arc.position(tau), state.position) << tau;
+  }
+  const FlightArc instant(start, start, 0.0);
+  EXPECT_EQ(instant.position(0.0), start.position);
+}
+
 }  // namespace
 }  // namespace talus
