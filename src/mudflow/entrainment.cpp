@@ -19,39 +19,56 @@ Entrainment::Entrainment(const GroundModel& ground, const Grid<float>& erodible,
   }
 }
 
-// Per particle: eroded depth dz = min(E h |u| step, remaining) (m) under its footprint a =
-// min(m / sigma, A) (m2), mass gain dm = rho0 dz a (kg), velocity x m / (m + dm) (momentum
-// unchanged), cell depth reduced by dz a / A (m).
+// Per particle: the demanded depth d = E h |u| step (m) over its footprint, a square of area
+// a = m / sigma (m2; the cell area when sigma is 0) centred on it. Each DEM cell k it overlaps by
+// a_k (m2) gives dz_k = min(d, remaining_k) over a_k, so volume_k = dz_k a_k (m3) and the cell's
+// depth falls by volume_k / A (A the cell area). The mass gain rho0 sum_k volume_k (kg) joins
+// the particle with its momentum unchanged (velocity x m / (m + dm)).
 double Entrainment::erode(ParticleSet& particles, const std::vector<char>& active, double step, Grid<float>& eroded) {
   require_same_grid(eroded.spec(), ground_.spec(), "eroded depth and DEM");
   const GridSpec& spec = ground_.spec();
   const double cell_area = spec.cell_area();
+  const double cell_width = std::abs(spec.geotransform[1]), cell_height = std::abs(spec.geotransform[5]);
   double entrained = 0;  // m3
   for (std::size_t i = 0; i < particles.size(); ++i) {
     if (!active.empty() && !active[i]) continue;
     if (particles.state[i] != ParticleState::flowing) continue;
-    const double col = std::floor((particles.x[i] - spec.geotransform[0]) / spec.geotransform[1]);
-    const double row = std::floor((particles.y[i] - spec.geotransform[3]) / spec.geotransform[5]);
-    if (!(col >= 0.0 && col < spec.width && row >= 0.0 && row < spec.height)) continue;
-    const std::size_t cell = remaining_.index(static_cast<int>(col), static_cast<int>(row));
-    double& left = remaining_[cell];
-    if (!(left > 0.0)) continue;
-    const double speed = particles.velocity(i).norm();
-    const double eroded_depth = std::min(rate_ * particles.depth[i] * speed * step, left);
-    if (!(eroded_depth > 0.0)) continue;
+    const double demanded = rate_ * particles.depth[i] * particles.velocity(i).norm() * step;  // m
+    if (!(demanded > 0.0)) continue;
     const double mass = particles.mass[i];
     const double sigma = particles.density[i];
-    const double footprint = sigma > 0.0 ? std::min(mass / sigma, cell_area) : cell_area;
-    const double volume = eroded_depth * footprint;
+    const double side = std::sqrt(sigma > 0.0 ? mass / sigma : cell_area);  // m
+    // The footprint in continuous cell coordinates (cell (col, row) spans [col, col + 1) x [row, row + 1)).
+    const double u = (particles.x[i] - spec.geotransform[0]) / spec.geotransform[1];
+    const double v = (particles.y[i] - spec.geotransform[3]) / spec.geotransform[5];
+    const double half_u = 0.5 * side / cell_width, half_v = 0.5 * side / cell_height;
+    if (!(std::isfinite(u) && std::isfinite(v) && std::isfinite(half_u) && std::isfinite(half_v))) continue;
+    const int col_first = std::max(0, static_cast<int>(std::floor(u - half_u)));
+    const int col_last = std::min(spec.width - 1, static_cast<int>(std::floor(u + half_u)));
+    const int row_first = std::max(0, static_cast<int>(std::floor(v - half_v)));
+    const int row_last = std::min(spec.height - 1, static_cast<int>(std::floor(v + half_v)));
+    double volume = 0;  // m3 from every cell
+    for (int row = row_first; row <= row_last; ++row) {
+      const double overlap_v = std::min(row + 1.0, v + half_v) - std::max(static_cast<double>(row), v - half_v);
+      for (int col = col_first; col <= col_last; ++col) {
+        const double overlap_u = std::min(col + 1.0, u + half_u) - std::max(static_cast<double>(col), u - half_u);
+        const std::size_t cell = remaining_.index(col, row);
+        double& left = remaining_[cell];
+        if (!(left > 0.0) || !(overlap_u > 0.0) || !(overlap_v > 0.0)) continue;
+        const double cell_volume = std::min(demanded, left) * overlap_u * overlap_v * cell_area;
+        const double cell_depth = cell_volume / cell_area;
+        left = std::max(0.0, left - cell_depth);
+        eroded[cell] += static_cast<float>(cell_depth);
+        volume += cell_volume;
+      }
+    }
+    if (!(volume > 0.0)) continue;
     const double gained = mud_density_ * volume;
     const double scale = mass / (mass + gained);
     particles.vx[i] *= scale;
     particles.vy[i] *= scale;
     particles.vz[i] *= scale;
     particles.mass[i] = mass + gained;
-    const double cell_depth = volume / cell_area;
-    left = std::max(0.0, left - cell_depth);
-    eroded[cell] += static_cast<float>(cell_depth);
     entrained += volume;
   }
   return entrained;

@@ -3,9 +3,10 @@
 // E the entrainment rate (1/m), h its flow depth, u its speed, until the cell's erodible depth is
 // used up. The eroded mass joins the particle at rest, so its momentum is unchanged.
 // Erodible and eroded depths are vertical depths per DEM cell (m), as in the erodible raster: a
-// cell holds depth x cell area (m3) of material. A particle erodes the depth E h |u| dt under
-// its horizontal footprint m / sigma (m2, sigma its areal density; the cell area when sigma is
-// 0; at most the cell area), so the cell's depth falls by that volume / cell area.
+// cell holds depth x cell area (m3) of material. A particle's horizontal footprint is a square of
+// area m / sigma (m2, sigma its areal density; the cell area when sigma is 0) centred on it; it
+// erodes the depth E h |u| dt from every cell the square overlaps, over the overlap, so a
+// particle wider than a cell erodes all the cells under it.
 #pragma once
 
 #include <vector>
@@ -24,7 +25,7 @@ class Entrainment {
   Entrainment(const GroundModel& ground, const Grid<float>& erodible, double rate, double mud_density);
 
   // Erodes for `step` (s) under the flowing particles flagged in `active` (all when empty), in
-  // index order, each in the DEM cell containing it; adds the mass to them and the eroded
+  // index order, each over the cells under its footprint; adds the mass to them and the eroded
   // depth to `eroded` (m per cell, DEM grid). Returns the volume entrained (m3).
   double erode(ParticleSet& particles, const std::vector<char>& active, double step, Grid<float>& eroded);
 

@@ -45,14 +45,47 @@ TEST(Entrainment, SmallStepFollowsTheRateLaw) {
   const Eigen::Vector3d v(3.0, -1.0, 0.5);                      // m/s
   ParticleSet particles = one_particle(ground, 13.1, -7.4, mass, sigma, h, v);
   const double volume = entrainment.erode(particles, {}, dt, eroded);
-  // dz = E h |u| dt under the footprint m / sigma = 1.5 m2 (< 4 m2 cell): exact to 1e-12.
-  const double expected = kRate * h * v.norm() * dt * (mass / sigma);  // m3
+  // dz = E h |u| dt under the footprint m / sigma = 1.5 m2 (< 4 m2 cell), every cell under it
+  // holding more than dz: exact to 1e-12.
+  const double depth = kRate * h * v.norm() * dt;     // m
+  const double expected = depth * (mass / sigma);     // m3
   EXPECT_NEAR(volume, expected, 1e-12 * expected);
   EXPECT_NEAR(particles.mass[0], mass + kRho * expected, 1e-12 * mass);
-  // The containing cell (col 7, row 4 for x 13.1 m, y -7.4 m with 2 m cells centred on
-  // multiples of 2 m) lost expected / 4 m2 of depth; float storage: 1e-6 relative.
-  EXPECT_NEAR(eroded.at(7, 4), expected / 4.0, 1e-6 * expected / 4.0);
+  // The footprint, a square of side sqrt(1.5) m centred on x 13.1 m, y -7.4 m, overlaps four
+  // 2 m cells centred on multiples of 2 m; cell (7, 4) spans x 13..15 m, y -9..-7 m, so it
+  // lost depth x its overlap / 4 m2. Float storage: 1e-6 relative.
+  const double half = 0.5 * std::sqrt(1.5);
+  const double overlap = (13.1 + half - 13.0) * (-7.0 - (-7.4 - half));  // m2
+  EXPECT_NEAR(eroded.at(7, 4), depth * overlap / 4.0, 1e-6 * depth);
+  double eroded_volume = 0;
+  for (std::size_t cell = 0; cell < eroded.size(); ++cell) eroded_volume += 4.0 * eroded[cell];
+  EXPECT_NEAR(eroded_volume, expected, 1e-6 * expected);
   EXPECT_NEAR(entrainment.remaining_volume(), 1.5 * 400 * 4.0 - expected, 1e-12 * 2400);
+}
+
+TEST(Entrainment, ACoarseParticleErodesEveryCellUnderIt) {
+  // A particle of 36 m2 footprint (side 6 m: three 2 m cells when centred on a cell) erodes
+  // depth E h |u| dt from all nine cells under it: 36 m2 x that depth, to 1e-12, with each
+  // cell's eroded depth equal to it (float storage, 1e-6 relative), and nothing beyond them.
+  const GroundModel ground = slope_ground();
+  const Grid<float> erodible(ground.spec(), 2.0f);
+  Entrainment entrainment(ground, erodible, kRate, kRho);
+  Grid<float> eroded(ground.spec(), 0.0f);
+  const double mass = 36000, sigma = 1000, h = 1.5, dt = 0.01;  // kg, kg/m2, m, s
+  const Eigen::Vector3d v(4.0, 2.0, 0.0);                         // m/s
+  ParticleSet particles = one_particle(ground, 20.0, -20.0, mass, sigma, h, v);
+  const double depth = kRate * h * v.norm() * dt;  // m
+  EXPECT_NEAR(entrainment.erode(particles, {}, dt, eroded), depth * 36.0, 1e-12 * depth * 36.0);
+  int eroded_cells = 0;
+  for (int row = 0; row < 20; ++row) {
+    for (int col = 0; col < 20; ++col) {
+      if (eroded.at(col, row) == 0.0f) continue;
+      ++eroded_cells;
+      EXPECT_NEAR(eroded.at(col, row), depth, 1e-6 * depth) << col << ", " << row;
+      EXPECT_TRUE(col >= 9 && col <= 11 && row >= 9 && row <= 11) << col << ", " << row;
+    }
+  }
+  EXPECT_EQ(eroded_cells, 9);
 }
 
 TEST(Entrainment, StopsAtTheAvailableDepth) {
@@ -61,8 +94,9 @@ TEST(Entrainment, StopsAtTheAvailableDepth) {
   erodible.at(5, 5) = 0.1f;
   Entrainment entrainment(ground, erodible, kRate, kRho);
   Grid<float> eroded(ground.spec(), 0.0f);
-  // sigma = 0: the footprint is the whole cell (4 m2); a long step asks far more than 0.1 m.
-  ParticleSet particles = one_particle(ground, 10.2, -9.8, 800, 0, 2.0, {10, 0, 3});
+  // sigma = 0: the footprint is one cell's area (4 m2), here exactly cell (5, 5) around its
+  // centre (10 m, -10 m); a long step asks far more than 0.1 m.
+  ParticleSet particles = one_particle(ground, 10.0, -10.0, 800, 0, 2.0, {10, 0, 3});
   const double available = static_cast<double>(0.1f) * 4.0;  // m3
   EXPECT_NEAR(entrainment.erode(particles, {}, 100.0, eroded), available, 1e-12 * available);
   EXPECT_EQ(entrainment.remaining_volume(), 0.0);
