@@ -4,24 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "talus/mudflow/smoothing_kernel.hpp"
 
 namespace talus {
-namespace {
-
-// The pair's kernel value (1/m2) and gradient factor (1/m4), averaged over both radii.
-struct PairKernel {
-  double value, gradient_factor;
-};
-inline PairKernel pair_kernel(double r, double inverse_i, double inverse_j) {
-  const KernelSample a = sample_kernel(r, inverse_i);
-  const KernelSample b = sample_kernel(r, inverse_j);
-  // At r = 0 (two feet on one spot) the gradient is zero by symmetry.
-  return {0.5 * (a.value + b.value), r > 0.0 ? 0.5 * (a.slope + b.slope) / r : 0.0};
-}
-
-}  // namespace
 
 double smoothing_radius(const ParticleSet& particles, std::size_t i) {
   const double radius = particles.radius[i];
@@ -31,21 +18,25 @@ double smoothing_radius(const ParticleSet& particles, std::size_t i) {
   return std::clamp(spread, radius, kLargestSmoothingGrowth * radius);
 }
 
+// One loop over the pairs in the search's order, so the sum is the same whatever the thread
+// count; the pairs' slots are read where the search left them, the slot arrays directly.
 double gather_density(const ParticleSet& particles, const PairSearch& search, std::size_t i, double smoothing,
                       NeighbourList& neighbours) {
-  const double xi = particles.x[i], yi = particles.y[i], ri = smoothing, inverse_i = 1.0 / ri;
-  double sigma = particles.mass[i] * sample_kernel(0.0, inverse_i).value;
-  thread_local std::vector<std::uint32_t> slots;
-  search.find_pairs(xi, yi, ri, static_cast<std::uint32_t>(i), slots);
+  const double xi = particles.x[i], yi = particles.y[i], inverse_i = 1.0 / smoothing;
+  const std::span<const std::uint32_t> slots = search.find_pairs(xi, yi, smoothing, static_cast<std::uint32_t>(i));
   neighbours.resize(slots.size());
+  const PairSearch::SlotArrays slot = search.slot_arrays();
+  NeighbourPair* pairs = neighbours.data();
+  double sigma = particles.mass[i] * sample_kernel(0.0, inverse_i).value;
   for (std::size_t k = 0; k < slots.size(); ++k) {
     const std::uint32_t s = slots[k];
-    const double dx = xi - search.x(s), dy = yi - search.y(s);
+    const double dx = xi - slot.x[s], dy = yi - slot.y[s];
     const double r = std::sqrt(dx * dx + dy * dy);
-    const double inverse_j = search.inverse_radius(s);
-    const PairKernel kernel = pair_kernel(r, inverse_i, inverse_j);
-    sigma += search.mass(s) * kernel.value;
-    neighbours[k] = {search.index(s), kernel.gradient_factor};
+    const KernelSample own = sample_kernel(r, inverse_i);
+    const KernelSample other = sample_kernel(r, slot.inverse_radius[s]);
+    sigma += slot.mass[s] * (0.5 * (own.value + other.value));
+    // At r = 0 (two feet on one spot) the gradient is zero by symmetry.
+    pairs[k] = {slot.index[s], r > 0.0 ? 0.5 * (own.slope + other.slope) / r : 0.0};
   }
   return sigma;
 }

@@ -83,6 +83,13 @@ void validate(const MudflowSettings& s) {
   require(std::isfinite(s.snapshot_interval) && s.snapshot_interval >= 0, "the snapshot interval must not be negative (s)");
 }
 
+// Paper 4.2: the step of each level 0..finest_level, coarse_step / 2^level (s).
+std::vector<double> level_steps(double coarse_step, int finest_level) {
+  std::vector<double> steps;
+  for (int level = 0; level <= finest_level; ++level) steps.push_back(std::ldexp(coarse_step, -level));
+  return steps;
+}
+
 // Sets OpenMP's default thread count for the calling thread and puts the previous one back.
 class ThreadCount {
  public:
@@ -105,6 +112,7 @@ class MudflowRun {
         threads_(settings.threads > 0 ? settings.threads : omp_get_max_threads()),
         coarse_step_(settings.unguarded_step > 0 ? settings.unguarded_step : settings.longest_step),
         finest_level_(settings.deepest_level + settings.max_retries),
+        level_steps_(level_steps(coarse_step_, finest_level_)),
         column_{settings.mud_density, settings.gravity},
         forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity},
         criteria_{settings.courant, settings.rheology.internal_viscosity},
@@ -139,7 +147,7 @@ class MudflowRun {
     for (long k = 0; k < count; ++k) f(static_cast<std::size_t>(list[static_cast<std::size_t>(k)]));
   }
 
-  double step_of(int level) const { return std::ldexp(coarse_step_, -level); }
+  double step_of(int level) const { return level_steps_[static_cast<std::size_t>(level)]; }
   bool flowing(std::size_t i) const { return p_.state[i] == ParticleState::flowing && outside_[i] == 0; }
   double time() const { return static_cast<double>(coarse_steps_) * coarse_step_; }
 
@@ -167,6 +175,7 @@ class MudflowRun {
   const int threads_;
   const double coarse_step_;     // s: the level-0 step
   const int finest_level_;       // the clock has 2^finest_level_ ticks per coarse step
+  const std::vector<double> level_steps_;  // s: the step of each level, coarse_step_ / 2^level
   const ColumnConstants column_;
   const FlowForceConstants forces_;
   const StepCriteria criteria_;
@@ -183,7 +192,9 @@ class MudflowRun {
   std::vector<char> outside_;             // left the valid area during this coarse step
   std::vector<double> outflow_mass_;      // kg: its mass when it left
   std::vector<double> outflow_energy_;    // J: the energy it took with it (flow_guard.hpp)
-  std::vector<std::int8_t> limiter_level_;  // level the limiter sees; -1: ignored (open_steps)
+  // Level of each particle as the limiter sees it: its level while it flows, -1 (ignored) once it
+  // is deposited or has left; kept up to date during the coarse step (open_steps).
+  std::vector<std::int8_t> limiter_level_;
   std::vector<char> erode_flags_;         // entrainment's selection, reused
   std::vector<double> mass_before_;       // kg: masses before an entrainment call, reused
 
@@ -312,16 +323,14 @@ void MudflowRun::open_steps(const std::vector<std::uint32_t>& list, std::uint64_
     for_each_listed(list, [&](std::size_t i) { kick(i, 0.5 * step_of(level)); });
     return;
   }
-  // Each particle's level as its neighbours see it, in one array (one load per neighbour).
-  for (std::size_t j = 0; j < p_.size(); ++j) {
-    limiter_level_[j] = flowing(j) ? static_cast<std::int8_t>(p_.level[j]) : std::int8_t{-1};
-  }
+  // The particles choosing see each other's wanted levels, the others their current levels.
   for (const std::uint32_t i : list) limiter_level_[i] = static_cast<std::int8_t>(wanted_[i]);
   for_each_listed(list, [&](std::size_t i) {
     const int limited = limited_level(wanted_[i], neighbours_[i], [&](std::uint32_t j) { return limiter_level_[j]; });
     p_.level[i] = static_cast<std::uint8_t>(aligned_level(limited, tick, finest_level_));
     kick(i, 0.5 * step_of(p_.level[i]));
   });
+  for (const std::uint32_t i : list) limiter_level_[i] = static_cast<std::int8_t>(p_.level[i]);
 }
 
 // Half a leapfrog kick (paper 4.1 forces): the conservative and viscous acceleration, then the
@@ -353,6 +362,7 @@ void MudflowRun::close_steps(const std::vector<std::uint32_t>& list) {
     const double driving = std::sqrt(p_.ax[i] * p_.ax[i] + p_.ay[i] * p_.ay[i] + p_.az[i] * p_.az[i]);
     if (driving > holding) return;
     p_.state[i] = ParticleState::deposited;
+    limiter_level_[i] = -1;
     p_.vx[i] = p_.vy[i] = p_.vz[i] = 0.0;
     p_.ax[i] = p_.ay[i] = p_.az[i] = 0.0;
   });
@@ -390,6 +400,7 @@ void MudflowRun::drift(const std::vector<std::uint32_t>& list, double duration) 
   for_each_listed(list, [&](std::size_t i) {
     if (drift_on_ground(ground_, p_, i, duration, normals_)) return;
     outside_[i] = 1;
+    limiter_level_[i] = -1;
     const double m = p_.mass[i];
     outflow_mass_[i] = m;
     outflow_energy_[i] = m * (0.5 * p_.velocity(i).squaredNorm() + s_.gravity * (p_.z[i] - reference_elevation_) +
@@ -409,6 +420,7 @@ void MudflowRun::coarse_step() {
   std::vector<std::uint32_t> moving, active;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (flowing(i)) moving.push_back(static_cast<std::uint32_t>(i));
+    limiter_level_[i] = -1;  // until the particle opens a step
   }
   open_steps(moving, 0);
   for (const std::uint32_t i : moving) next_sync_[i] = ticks_per_step(p_.level[i], finest_level_);

@@ -13,10 +13,17 @@ namespace {
 // is then raised to their largest radius).
 constexpr int kMostClasses = 24;
 
+// Bins across the reach of a class (-): narrower bins follow a query's circle more closely, so
+// it reads fewer candidates, but it visits more rows of bins, and each row ends its loop with a
+// branch the processor mispredicts.
+constexpr double kBinsPerReach = 2.0;
 // Bins per particle of a class at most (-): the bins cost memory and a pass per rebuild, so a
 // class of few particles spread far apart gets wider bins. The bin size changes only how many
 // candidates a query reads, never which pairs it finds.
 constexpr double kMostBinsPerParticle = 2.0;
+// Margin (in bins) by which a query widens its reach, far above the rounding of the bin
+// coordinates, so that a particle on a bin's edge is never missed.
+constexpr double kBinMargin = 1e-4;
 
 int class_of(double radius, double smallest_radius) {
   int k = 0;
@@ -73,7 +80,7 @@ void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>
     c.reach = std::max(std::ldexp(smallest_radius, static_cast<int>(k)), widest[k]);
     const double width = max_x[k] - min_x[k], height = max_y[k] - min_y[k];
     const double sparse = std::sqrt(width * height / (kMostBinsPerParticle * static_cast<double>(members[k])));
-    c.bin = std::max(0.5 * c.reach, sparse);
+    c.bin = std::max(c.reach / kBinsPerReach, sparse);
     c.origin_x = min_x[k];
     c.origin_y = min_y[k];
     c.columns = static_cast<long>(width / c.bin) + 1;
@@ -101,8 +108,10 @@ void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>
   x_.resize(n);
   y_.resize(n);
   radius_.resize(n);
+  radius2_.resize(n);
   inverse_.resize(n);
   mass_.resize(n);
+  slot_.resize(n);
   next_slot_.resize(first_bin.back());
   for (std::size_t k = 0; k < class_count; ++k) {
     const std::vector<std::uint32_t>& start = classes_[k].start;
@@ -111,53 +120,71 @@ void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t slot = next_slot_[first_bin[class_index_[i]] + bin_of_[i]]++;
     index_[slot] = static_cast<std::uint32_t>(i);
+    slot_[i] = slot;
     x_[slot] = particles.x[i];
     y_[slot] = particles.y[i];
     radius_[slot] = radii[i];
+    radius2_[slot] = radii[i] * radii[i];
     inverse_[slot] = 1.0 / radii[i];
     mass_[slot] = particles.mass[i];
   }
 }
 
-void PairSearch::find_pairs(double x, double y, double radius, std::uint32_t self,
-                            std::vector<std::uint32_t>& slots) const {
-  thread_local std::vector<std::uint32_t> candidates;  // grown, never shrunk: no clearing per query
+std::span<const std::uint32_t> PairSearch::find_pairs(double x, double y, double radius, std::uint32_t self) const {
+  // Every slot is read at most once per query, so storage for all of them always suffices.
+  thread_local std::vector<std::uint32_t> pairs;
+  if (pairs.size() < index_.size()) pairs.resize(index_.size());
+  const std::uint32_t self_slot = self < slot_.size() ? slot_[self] : std::numeric_limits<std::uint32_t>::max();
   std::size_t count = 0;
   for (const RadiusClass& c : classes_) {
-    if (c.columns > 0) count = scan_class(c, x, y, radius, self, candidates, count);
+    if (c.columns > 0) count = scan_class(c, x, y, radius, self_slot, pairs.data(), count);
   }
-  slots.assign(candidates.begin(), candidates.begin() + static_cast<long>(count));
+  return {pairs.data(), count};
+}
+
+void PairSearch::find_pairs(double x, double y, double radius, std::uint32_t self,
+                            std::vector<std::uint32_t>& slots) const {
+  const std::span<const std::uint32_t> found = find_pairs(x, y, radius, self);
+  slots.assign(found.begin(), found.end());
 }
 
 // The bins of one class within max(radius, class reach) of (x, y), row by row: the pairs' slots
-// go to candidates[count...], which grows as needed; returns the new count. The candidates are
-// filtered without branches (about half lie beyond the support, a branch the processor cannot
-// predict).
-std::size_t PairSearch::scan_class(const RadiusClass& c, double x, double y, double radius, std::uint32_t self,
-                                   std::vector<std::uint32_t>& candidates, std::size_t count) const {
-  const double reach = std::max(radius, c.reach);
-  const double left = x - reach - c.origin_x, right = x + reach - c.origin_x;
-  const double bottom = y - reach - c.origin_y, top = y + reach - c.origin_y;
+// go to pairs[count...]; returns the new count. A row of bins is a contiguous range of slots,
+// filtered without branches (about half the candidates lie beyond the support, a branch the
+// processor cannot predict); the query's own slot splits its row in two.
+std::size_t PairSearch::scan_class(const RadiusClass& c, double x, double y, double radius, std::uint32_t self_slot,
+                                   std::uint32_t* pairs, std::size_t count) const {
+  const double margin = kBinMargin * c.bin;  // m
+  const double reach = std::max(radius, c.reach) + margin;
+  const double offset_x = x - c.origin_x, offset_y = y - c.origin_y;  // m
   const double extent_x = static_cast<double>(c.columns) * c.bin, extent_y = static_cast<double>(c.rows) * c.bin;
-  if (right < 0.0 || bottom > extent_y || top < 0.0 || left > extent_x) return count;
-  const long first_column = clamped_bin(left, c.bin, c.columns), last_column = clamped_bin(right, c.bin, c.columns);
-  const long first_row = clamped_bin(bottom, c.bin, c.rows), last_row = clamped_bin(top, c.bin, c.rows);
+  if (offset_x + reach < 0.0 || offset_y - reach > extent_y || offset_y + reach < 0.0 || offset_x - reach > extent_x) {
+    return count;
+  }
+  const long first_column = clamped_bin(offset_x - reach, c.bin, c.columns);
+  const long last_column = clamped_bin(offset_x + reach, c.bin, c.columns);
+  const long first_row = clamped_bin(offset_y - reach, c.bin, c.rows);
+  const long last_row = clamped_bin(offset_y + reach, c.bin, c.rows);
   const double radius2 = radius * radius;
   const double* px = x_.data();
   const double* py = y_.data();
-  const double* pr = radius_.data();
-  const std::uint32_t* pi = index_.data();
-  for (long row = first_row; row <= last_row; ++row) {
-    const std::uint32_t from = c.start[static_cast<std::size_t>(row * c.columns + first_column)];
-    const std::uint32_t to = c.start[static_cast<std::size_t>(row * c.columns + last_column + 1)];
-    if (candidates.size() < count + (to - from)) candidates.resize(2 * (count + (to - from)));
-    std::uint32_t* out = candidates.data();
+  const double* pr2 = radius2_.data();
+  const auto filter = [&](std::uint32_t from, std::uint32_t to) {
     for (std::uint32_t s = from; s < to; ++s) {
       const double dx = x - px[s], dy = y - py[s];
       const double r2 = dx * dx + dy * dy;
-      const double rs = pr[s];
-      out[count] = s;
-      count += static_cast<std::size_t>(((r2 < radius2) | (r2 < rs * rs)) & (pi[s] != self));
+      pairs[count] = s;
+      count += static_cast<std::size_t>(r2 < std::max(radius2, pr2[s]));
+    }
+  };
+  for (long row = first_row; row <= last_row; ++row) {
+    const std::uint32_t from = c.start[static_cast<std::size_t>(row * c.columns + first_column)];
+    const std::uint32_t to = c.start[static_cast<std::size_t>(row * c.columns + last_column + 1)];
+    if (self_slot >= from && self_slot < to) {
+      filter(from, self_slot);
+      filter(self_slot + 1, to);
+    } else {
+      filter(from, to);
     }
   }
   return count;

@@ -10,12 +10,14 @@
 // steps, and a fine particle beside a coarse one scans fine bins, not coarse ones.
 //
 // The classes keep copies of the positions, radii and masses in bin order, so a query reads
-// contiguous memory; a row of bins is one contiguous range. Every query lists its pairs in the
-// same fixed order (class, row, column, particle index), whatever the thread count.
+// contiguous memory; a row of bins is one contiguous range, filtered without branches. Every
+// query lists its pairs in the same fixed order (class, row, column, particle index), whatever
+// the thread count.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "talus/mudflow/particle_set.hpp"
@@ -28,8 +30,10 @@ class PairSearch {
   // smallest_radius is R0 (m), the upper bound of class 0.
   void rebuild(const ParticleSet& particles, const std::vector<double>& radii, double smallest_radius);
 
-  // Appends to `slots` (cleared first) the slot of every particle j != self with
-  // (x_j - x)^2 + (y_j - y)^2 < max(radius, R_j)^2, in the fixed order.
+  // The slot of every particle j != self with (x_j - x)^2 + (y_j - y)^2 < max(radius, R_j)^2, in
+  // the fixed order, in storage of the calling thread that the thread's next query overwrites.
+  std::span<const std::uint32_t> find_pairs(double x, double y, double radius, std::uint32_t self) const;
+  // The same slots copied into `slots`.
   void find_pairs(double x, double y, double radius, std::uint32_t self, std::vector<std::uint32_t>& slots) const;
 
   // What a slot holds: the particle's index, horizontal position (m), radius (m), its inverse
@@ -41,6 +45,13 @@ class PairSearch {
   double inverse_radius(std::uint32_t slot) const { return inverse_[slot]; }
   double mass(std::uint32_t slot) const { return mass_[slot]; }
 
+  // The slot arrays themselves, for loops over many pairs.
+  struct SlotArrays {
+    const std::uint32_t* index;
+    const double *x, *y, *inverse_radius, *mass;
+  };
+  SlotArrays slot_arrays() const { return {index_.data(), x_.data(), y_.data(), inverse_.data(), mass_.data()}; }
+
  private:
   struct RadiusClass {
     double reach = 0;                 // m: R0 2^k, the largest radius in the class
@@ -50,12 +61,14 @@ class PairSearch {
     std::vector<std::uint32_t> start;  // per bin, its first slot; one extra at the end
   };
 
-  std::size_t scan_class(const RadiusClass& c, double x, double y, double radius, std::uint32_t self,
-                         std::vector<std::uint32_t>& candidates, std::size_t count) const;
+  std::size_t scan_class(const RadiusClass& c, double x, double y, double radius, std::uint32_t self_slot,
+                         std::uint32_t* pairs, std::size_t count) const;
 
   std::vector<RadiusClass> classes_;
   std::vector<std::uint32_t> index_;  // per slot, in class then bin then index order
   std::vector<double> x_, y_, radius_, inverse_, mass_;
+  std::vector<double> radius2_;       // m2: per slot, the squared radius
+  std::vector<std::uint32_t> slot_;   // per particle, its slot
   // Work arrays of rebuild, kept so that the rebuild at every substep does not allocate.
   std::vector<std::uint8_t> class_index_;  // per particle
   std::vector<std::uint32_t> bin_of_;      // per particle, its bin within its class

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -31,6 +32,20 @@ std::vector<std::uint32_t> found_pairs(const PairSearch& search, const ParticleS
   return pairs;
 }
 
+// Every particle's pairs, sorted, compared with brute force (exactly, and without duplicates);
+// returns how many there are.
+std::size_t expect_brute_force_pairs(const PairSearch& search, const ParticleSet& p, const std::vector<double>& radii) {
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    std::vector<std::uint32_t> found = found_pairs(search, p, radii, i);
+    std::sort(found.begin(), found.end());
+    EXPECT_TRUE(std::adjacent_find(found.begin(), found.end()) == found.end()) << "duplicate pair of " << i;
+    EXPECT_EQ(found, brute_force_pairs(p, radii, i)) << i;
+    pairs += found.size();
+  }
+  return pairs;
+}
+
 TEST(PairSearch, FindsExactlyTheBruteForcePairsOverManyClasses) {
   // A dense patch of narrow particles, wider ones among them (radii 0.5 to 12 m: classes 0 to 5
   // with R0 = 0.5 m) and a few far-away stragglers that make the wide classes sparse.
@@ -48,15 +63,32 @@ TEST(PairSearch, FindsExactlyTheBruteForcePairsOverManyClasses) {
   }
   PairSearch search;
   search.rebuild(p, radii, 0.5);
-  std::size_t pairs = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    std::vector<std::uint32_t> found = found_pairs(search, p, radii, i);
-    std::sort(found.begin(), found.end());
-    EXPECT_TRUE(std::adjacent_find(found.begin(), found.end()) == found.end()) << "duplicate pair of " << i;
-    EXPECT_EQ(found, brute_force_pairs(p, radii, i)) << i;
-    pairs += found.size();
-  }
+  const std::size_t pairs = expect_brute_force_pairs(search, p, radii);
   EXPECT_GT(pairs, 8000u);  // the scene has pairs through every class (9850, about 16 per particle)
+}
+
+TEST(PairSearch, FindsExactlyTheBruteForcePairsOnBinEdgesFarFromTheOrigin) {
+  // Map coordinates (UTM-like, millions of metres) on a lattice whose lines fall on the bins'
+  // edges (bins of R0 / 2 = 1 m from the lowest particle), and pairs exactly at r = R: rounding
+  // must neither lose a pair nor add one.
+  ParticleSet p;
+  std::vector<double> radii;
+  for (int a = 0; a < 24; ++a) {
+    for (int b = 0; b < 24; ++b) {
+      p.add(1.0, {654321.0 + 0.5 * a, 5123456.0 + 0.5 * b, 0.0}, {0, 0, 0}, 2.0);
+      radii.push_back((a + b) % 7 == 0 ? 3.0 : 2.0);
+    }
+  }
+  PairSearch search;
+  search.rebuild(p, radii, 2.0);
+  EXPECT_EQ(expect_brute_force_pairs(search, p, radii), 29184u);  // by brute force: about 51 per particle
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    // The span holds the slots that the vector copies.
+    const std::span<const std::uint32_t> slots = search.find_pairs(p.x[i], p.y[i], radii[i], static_cast<std::uint32_t>(i));
+    std::vector<std::uint32_t> copied;
+    search.find_pairs(p.x[i], p.y[i], radii[i], static_cast<std::uint32_t>(i), copied);
+    EXPECT_TRUE(std::equal(slots.begin(), slots.end(), copied.begin(), copied.end())) << i;
+  }
 }
 
 TEST(PairSearch, SlotsCopyThePositionsRadiiAndMasses) {
