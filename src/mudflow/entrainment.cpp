@@ -49,17 +49,18 @@ double Entrainment::erode(ParticleSet& particles, const std::vector<char>& activ
     const int row_last = std::min(spec.height - 1, static_cast<int>(std::floor(v + half_v)));
     double volume = 0;  // m3 from every cell
     for (int row = row_first; row <= row_last; ++row) {
+      // Fractions of a cell's width and height (-) that the footprint covers.
       const double overlap_v = std::min(row + 1.0, v + half_v) - std::max(static_cast<double>(row), v - half_v);
+      if (!(overlap_v > 0.0)) continue;
       for (int col = col_first; col <= col_last; ++col) {
         const double overlap_u = std::min(col + 1.0, u + half_u) - std::max(static_cast<double>(col), u - half_u);
         const std::size_t cell = remaining_.index(col, row);
         double& left = remaining_[cell];
-        if (!(left > 0.0) || !(overlap_u > 0.0) || !(overlap_v > 0.0)) continue;
-        const double cell_volume = std::min(demanded, left) * overlap_u * overlap_v * cell_area;
-        const double cell_depth = cell_volume / cell_area;
+        if (!(left > 0.0) || !(overlap_u > 0.0)) continue;
+        const double cell_depth = std::min(demanded, left) * overlap_u * overlap_v;  // m over the whole cell
         left = std::max(0.0, left - cell_depth);
         eroded[cell] += static_cast<float>(cell_depth);
-        volume += cell_volume;
+        volume += cell_depth * cell_area;
       }
     }
     if (!(volume > 0.0)) continue;
