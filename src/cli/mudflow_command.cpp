@@ -369,7 +369,9 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
   auto* snapshots = cmd->add_option("--snapshots", o->settings.snapshot_interval,
                                     "Write particles.gpkg with the particles every SECONDS of simulated time");
   auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(defaults.seed);
-  auto* threads = cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
+  auto* threads = cmd->add_option("--threads", o->settings.threads,
+                                  "Threads (default: all cores). With other jobs on the machine, start Talus with "
+                                  "OMP_WAIT_POLICY=passive in the environment (docs/performance.md)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
   cmd->callback([o, table, &action, duration, size, adaptive, rheology, snapshots, seed, threads] {
     const CLI::Option* given[] = {duration, seed, threads, size, adaptive, rheology, snapshots};
