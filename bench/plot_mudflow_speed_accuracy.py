@@ -65,7 +65,7 @@ def main():
     depth_axes.set_ylabel("RMS difference of flow_depth_max (m)")
     depth_axes.set_title("Maximum flow depth")
     runout_axes.set_yscale("log")
-    runout_axes.set_ylabel("|runout - reference runout| (m, log scale; under 1 m drawn at 1)")
+    runout_axes.set_ylabel("|runout error| (m, log scale; < 1 m drawn at 1)")
     runout_axes.set_title("Runout from the release centroid")
 
     handles, labels = iou_axes.get_legend_handles_labels()
