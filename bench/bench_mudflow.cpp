@@ -3,8 +3,8 @@
 // run for its first 40 simulated seconds with the default rheology (Voellmy), adaptive (released
 // one particle per 5 m DEM cell, then fission, fusion and individual time steps) and uniform
 // (one global step), with the finest particles 2.5 m (the default; 1284 particles when uniform)
-// and 1.25 m (5136). Per-particle loops over fewer than MudflowSettings::parallel_particles run
-// on one thread, so only the 1.25 m uniform run uses the second thread much.
+// and 1.25 m (5136). Per-particle loops run on both threads while timed trials find that faster
+// (MudflowSettings::parallel_check_period, docs/mudflow.md "Threads").
 // Arguments: threads, adaptive (1) or uniform (0), finest particle size (mm).
 // Counters: particle-steps/s (MudflowResult::particle_steps, one force evaluation of one
 // particle, over the wall time of the run); particle-steps per CPU second (over the CPU time of

@@ -54,6 +54,10 @@ ParameterTable parameter_table(MudflowOptions& o) {
   table.add("run", "seed", "", "seed of the jitter of the particles' initial places", &s.seed);
   table.add("run", "threads", "", "threads (0: all cores); the layers do not depend on it", &s.threads);
   table.add("run", "parallel_particles", "", "loops over fewer particles than this run on one thread", &s.parallel_particles);
+  table.add("run", "parallel_check_period", "",
+            "coarse steps between timed trials of one thread against all threads for the particle loops, which then "
+            "run the faster way (0: always all threads); the layers do not depend on it",
+            &s.parallel_check_period);
   table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density);
   table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity);
   table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size);
@@ -153,6 +157,8 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
                 s.stop_energy_fraction, "expected a fraction in [0, 1)");
   check.require(s.threads >= 0, "run", "threads", s.threads, "expected 0 (all cores) or more");
   check.require(s.parallel_particles >= 1, "run", "parallel_particles", s.parallel_particles, "expected 1 or more");
+  check.require(s.parallel_check_period == 0 || s.parallel_check_period >= 3, "run", "parallel_check_period",
+                s.parallel_check_period, "expected 0 (always all threads) or 3 or more coarse steps");
   check.require(s.mud_density >= 1000.0 && s.mud_density <= 3000.0, "mud", "density", s.mud_density,
                 "expected 1000-3000 kg/m3");
   check.require(s.gravity > 0.0 && s.gravity <= 30.0, "mud", "gravity", s.gravity, "expected 0-30 m/s2");

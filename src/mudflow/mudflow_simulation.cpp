@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "talus/mudflow/flow_density.hpp"
 #include "talus/mudflow/flow_forces.hpp"
 #include "talus/mudflow/flow_guard.hpp"
+#include "talus/mudflow/parallel_loop_choice.hpp"
 #include "talus/mudflow/pair_search.hpp"
 #include "talus/mudflow/particle_fission.hpp"
 #include "talus/mudflow/particle_fusion.hpp"
@@ -57,6 +59,8 @@ void validate(const MudflowSettings& s) {
   require(s.stop_energy_fraction >= 0 && s.stop_energy_fraction < 1, "the stop energy fraction must lie in [0, 1)");
   require(s.threads >= 0, "the thread count must be 0 (all cores) or positive");
   require(s.parallel_particles >= 1, "the parallel particle count must be 1 or more");
+  require(s.parallel_check_period == 0 || s.parallel_check_period >= 3,
+          "the parallel check period must be 0 (always parallel) or at least 3 coarse steps");
   require(std::isfinite(s.mud_density) && s.mud_density > 0, "the mud density must be positive (kg/m3)");
   require(std::isfinite(s.gravity) && s.gravity > 0, "gravity must be positive (m/s2)");
   require(std::isfinite(s.particle_size) && s.particle_size > 0, "the particle size must be positive (m)");
@@ -116,7 +120,8 @@ class MudflowRun {
         column_{settings.mud_density, settings.gravity},
         forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity},
         criteria_{settings.courant, settings.rheology.internal_viscosity},
-        maps_(ground, settings.mud_density, settings.arrival_depth, erodible != nullptr) {
+        maps_(ground, settings.mud_density, settings.arrival_depth, erodible != nullptr),
+        loops_(settings.parallel_check_period) {
     ReleaseLayout layout;
     layout.spacing = settings.particle_size * (settings.adaptive ? std::ldexp(1.0, settings.coarse_levels) : 1.0);
     layout.mud_density = settings.mud_density;
@@ -138,8 +143,8 @@ class MudflowRun {
     const long count = static_cast<long>(list.size());
     // Short loops stay on one thread (settings.parallel_particles): a parallel region costs
     // microseconds on an idle machine and milliseconds on a loaded one, when a spinning thread
-    // loses its core.
-    if (threads_ == 1 || count < s_.parallel_particles) {
+    // loses its core; so do all loops while timed trials find one thread faster (loops_).
+    if (threads_ == 1 || !loops_.parallel() || count < s_.parallel_particles) {
       for (const std::uint32_t i : list) f(static_cast<std::size_t>(i));
       return;
     }
@@ -201,6 +206,7 @@ class MudflowRun {
   std::optional<Entrainment> entrainment_;
   Grid<float> eroded_;
   FlowMaps maps_;
+  ParallelLoopChoice loops_;
 
   int depth_ = 0;                 // guard: every level is this much deeper
   std::uint64_t coarse_steps_ = 0;
@@ -576,6 +582,8 @@ MudflowResult MudflowRun::run() {
 
   const double slack = kTimeSlack * coarse_step_;
   while (true) {
+    const auto started = std::chrono::steady_clock::now();
+    const std::uint64_t steps_before = particle_steps_;
     if (adapt()) refresh();
     const ParticleSet saved = s_.guard ? p_ : ParticleSet{};
     const std::optional<Entrainment> saved_entrainment = s_.guard ? entrainment_ : std::nullopt;
@@ -602,6 +610,8 @@ MudflowResult MudflowRun::run() {
       outflow_volume_ = saved_outflow;
       refresh();
     }
+    loops_.record(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+                  particle_steps_ - steps_before);
     ++coarse_steps_;
     const double t = time();
     record(result);

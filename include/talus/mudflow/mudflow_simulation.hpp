@@ -28,7 +28,9 @@ struct MudflowSettings {
   double stop_energy_fraction = 0.01;  // the run ends when kinetic energy falls below this x its peak (-)
   std::uint64_t seed = 1;           // jitter of the particles' initial places
   int threads = 0;                  // 0: all cores
-  int parallel_particles = 4096;    // per-particle loops over fewer particles run on one thread
+  int parallel_particles = 256;     // per-particle loops over fewer particles run on one thread
+  int parallel_check_period = 20;   // coarse steps between timed trials of one thread against all for the
+                                    // per-particle loops (parallel_loop_choice.hpp); 0: always all threads
   // Mud and particles.
   double mud_density = 2000;        // rho0 (kg/m3)
   double gravity = 9.81;            // m/s2
