@@ -5,23 +5,21 @@
 
 namespace talus {
 
-ParallelLoopChoice::ParallelLoopChoice(int period) : first_period_(period), period_(period), parallel_(period == 0) {}
+ParallelLoopChoice::ParallelLoopChoice(int period) : first_period_(period), period_(period) {}
 
 void ParallelLoopChoice::record(double seconds, std::uint64_t particle_steps) {
-  if (period_ == 0 || particle_steps == 0) return;
+  if (first_period_ == 0 || particle_steps == 0) return;
   const double cost = seconds / static_cast<double>(particle_steps);
   if (position_ == 0) {
     one_thread_cost_ = cost;
-    parallel_ = true;  // the all-thread trial comes next
   } else if (position_ == 1) {
     const bool faster = cost < one_thread_cost_;
     const bool confirmed = decided_ && faster == chosen_parallel_;
     period_ = confirmed ? std::min(2 * period_, kLongestPeriods * first_period_) : first_period_;
     decided_ = true;
-    chosen_parallel_ = parallel_ = faster;
+    chosen_parallel_ = faster;
   }
   position_ = (position_ + 1) % period_;
-  if (position_ == 0) parallel_ = false;  // a new period opens with the one-thread trial
 }
 
 }  // namespace talus

@@ -24,8 +24,9 @@ class ParallelLoopChoice {
   // parallel.
   explicit ParallelLoopChoice(int period);
 
-  // The way the next coarse step runs its per-particle loops: true on all threads.
-  bool parallel() const { return parallel_; }
+  // The way the next coarse step runs its per-particle loops: true on all threads (the
+  // one-thread trial opens a period, the all-thread trial follows it).
+  bool parallel() const { return first_period_ == 0 || position_ == 1 || (position_ > 1 && chosen_parallel_); }
   // One coarse step ran the way parallel() said: its wall time (s) and its particle-steps. A step
   // with no particle-step tells nothing and leaves the choice as it is.
   void record(double seconds, std::uint64_t particle_steps);
@@ -37,7 +38,6 @@ class ParallelLoopChoice {
   double one_thread_cost_ = 0;  // s per particle-step in the last one-thread trial
   bool decided_ = false;        // a pair of trials has chosen...
   bool chosen_parallel_ = false;  // ...this way
-  bool parallel_;
 };
 
 }  // namespace talus
