@@ -40,7 +40,7 @@ Eigen::Vector3d PerturbedGround::normal(double x, double y) const {
 }
 
 GroundMaterial PerturbedGround::material(double x, double y) const {
-  GroundMaterial material = ground_.material(ground_.locate(x, y));
+  GroundMaterial material = ground_.material(x, y);
   vary(material, variation_);
   return material;
 }
