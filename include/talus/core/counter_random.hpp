@@ -7,22 +7,35 @@
 
 namespace talus {
 
-// Stateless 64-bit mix of four words (SplitMix64 finaliser rounds, Steele et al. 2014).
+// One SplitMix64 round (Steele et al. 2014): a bijective 64-bit mix.
+inline std::uint64_t splitmix64(std::uint64_t z) {
+  z += 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+// The key of the stream (seed, source, run): the first three of counter_hash's four rounds.
+std::uint64_t stream_key(std::uint64_t seed, std::uint64_t source, std::uint64_t run);
+
+// Stateless 64-bit mix of four words: splitmix64(stream_key(seed, source, run) ^ counter).
 std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t source, std::uint64_t run, std::uint64_t counter);
 
 // A stream of draws for one (seed, source, run); the counter advances by one per draw.
 class CounterRandom {
  public:
-  CounterRandom(std::uint64_t seed, std::uint64_t source, std::uint64_t run)
-      : seed_(seed), source_(source), run_(run) {}
-  std::uint64_t next_bits() { return counter_hash(seed_, source_, run_, counter_++); }
-  double uniform();                              // [0, 1)
-  double uniform(double low, double high);       // [low, high)
+  CounterRandom(std::uint64_t seed, std::uint64_t source, std::uint64_t run) : key_(stream_key(seed, source, run)) {}
+  // counter_hash(seed, source, run, counter), with the stream's key computed once.
+  std::uint64_t next_bits() { return splitmix64(key_ ^ counter_++); }
+  // [0, 1): the top 53 bits as the mantissa.
+  double uniform() { return static_cast<double>(next_bits() >> 11) * 0x1.0p-53; }
+  // [low, high)
+  double uniform(double low, double high) { return low + (high - low) * uniform(); }
   double normal();                               // standard normal (Box-Muller)
   std::uint64_t draws() const { return counter_; }
 
  private:
-  std::uint64_t seed_, source_, run_;
+  std::uint64_t key_;
   std::uint64_t counter_ = 0;
 };
 
