@@ -142,12 +142,6 @@ std::span<const std::uint32_t> PairSearch::find_pairs(double x, double y, double
   return {pairs.data(), count};
 }
 
-void PairSearch::find_pairs(double x, double y, double radius, std::uint32_t self,
-                            std::vector<std::uint32_t>& slots) const {
-  const std::span<const std::uint32_t> found = find_pairs(x, y, radius, self);
-  slots.assign(found.begin(), found.end());
-}
-
 // The bins of one class within max(radius, class reach) of (x, y), row by row: the pairs' slots
 // go to pairs[count...]; returns the new count. A row of bins is a contiguous range of slots,
 // filtered without branches (about half the candidates lie beyond the support, a branch the

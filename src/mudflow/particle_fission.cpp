@@ -38,9 +38,7 @@ double pressure_contrast(const ParticleSet& particles, const PairSearch& search,
   const double inverse_i = 1.0 / radius_i;
   double gradient_x = 0, gradient_y = 0;  // Pa/m: the plain sum G
   double lxx = 0, lxy = 0, lyy = 0;       // -: the normalisation matrix L (symmetric)
-  thread_local std::vector<std::uint32_t> slots;
-  search.find_pairs(xi, yi, radius_i, static_cast<std::uint32_t>(i), slots);
-  for (const std::uint32_t s : slots) {
+  for (const std::uint32_t s : search.find_pairs(xi, yi, radius_i, static_cast<std::uint32_t>(i))) {
     const std::uint32_t j = search.index(s);
     if (!(particles.density[j] > 0)) continue;
     const double dx = xi - search.x(s), dy = yi - search.y(s);

@@ -47,9 +47,7 @@ bool nearest_group(const ParticleSet& particles, const PairSearch& search, const
   std::array<Candidate, kGroupSize - 1> nearest{};
   std::size_t found = 0;
   const double radius = particles.radius[i];  // m
-  thread_local std::vector<std::uint32_t> slots;
-  search.find_pairs(particles.x[i], particles.y[i], radius, i, slots);
-  for (const std::uint32_t s : slots) {
+  for (const std::uint32_t s : search.find_pairs(particles.x[i], particles.y[i], radius, i)) {
     const std::uint32_t j = search.index(s);
     if (grouped[j] || particles.state[j] != ParticleState::flowing) continue;
     if (!same_radius(particles.radius[j], radius)) continue;

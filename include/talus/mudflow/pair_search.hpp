@@ -33,8 +33,6 @@ class PairSearch {
   // The slot of every particle j != self with (x_j - x)^2 + (y_j - y)^2 < max(radius, R_j)^2, in
   // the fixed order, in storage of the calling thread that the thread's next query overwrites.
   std::span<const std::uint32_t> find_pairs(double x, double y, double radius, std::uint32_t self) const;
-  // The same slots copied into `slots`.
-  void find_pairs(double x, double y, double radius, std::uint32_t self, std::vector<std::uint32_t>& slots) const;
 
   // What a slot holds: the particle's index, horizontal position (m), radius (m), its inverse
   // (1/m) and mass (kg) at the last rebuild.
