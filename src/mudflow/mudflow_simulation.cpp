@@ -141,15 +141,25 @@ class MudflowRun {
   template <class F>
   void for_each_listed(const std::vector<std::uint32_t>& list, F&& f) const {
     const long count = static_cast<long>(list.size());
-    // Short loops stay on one thread (settings.parallel_particles): a parallel region costs
-    // microseconds on an idle machine and milliseconds on a loaded one, when a spinning thread
-    // loses its core; so do all loops while timed trials find one thread faster (loops_).
-    if (threads_ == 1 || !loops_.parallel() || count < s_.parallel_particles) {
+    if (threads_for(list.size()) == 1) {
       for (const std::uint32_t i : list) f(static_cast<std::size_t>(i));
       return;
     }
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (long k = 0; k < count; ++k) f(static_cast<std::size_t>(list[static_cast<std::size_t>(k)]));
+  }
+
+  // Threads for a loop over `count` particles. Short loops stay on one thread
+  // (settings.parallel_particles): a parallel region costs microseconds on an idle machine and
+  // milliseconds on a loaded one, when a spinning thread loses its core; so do all loops while
+  // timed trials find one thread faster (loops_).
+  int threads_for(std::size_t count) const {
+    const bool parallel = threads_ > 1 && loops_.parallel() && count >= static_cast<std::size_t>(s_.parallel_particles);
+    return parallel ? threads_ : 1;
+  }
+  // The pair search over every particle with the given radii, sorted on the loops' threads.
+  void rebuild_pairs(const std::vector<double>& radii) {
+    pairs_.rebuild(p_, radii, s_.particle_size * kSupportPerSpacing, threads_for(p_.size()));
   }
 
   double step_of(int level) const { return level_steps_[static_cast<std::size_t>(level)]; }
@@ -259,7 +269,7 @@ void MudflowRun::place_all_on_ground() {
 // pair search's copies of the positions, masses and smoothing radii of the latest densities),
 // with the column states and the smoothing radii for the next evaluation; then the forces.
 void MudflowRun::evaluate(const std::vector<std::uint32_t>& list) {
-  pairs_.rebuild(p_, smoothing_, s_.particle_size * kSupportPerSpacing);
+  rebuild_pairs(smoothing_);
   for_each_listed(list, [&](std::size_t i) {
     const double sigma = gather_density(p_, pairs_, i, smoothing_[i], neighbours_[i]);
     set_column_state(p_, i, sigma, normals_.z[i], column_);
@@ -477,11 +487,10 @@ bool MudflowRun::adapt() {
     }
     return count;
   };
-  const double finest_radius = s_.particle_size * kSupportPerSpacing;
-  pairs_.rebuild(p_, p_.radius, finest_radius);
+  rebuild_pairs(p_.radius);
   const FissionRule fission{s_.split_threshold, s_.particle_size};
   const std::size_t split = conserve([&] { return split_particles(p_, pairs_, ground_, fission); });
-  pairs_.rebuild(p_, p_.radius, finest_radius);
+  rebuild_pairs(p_.radius);
   const FusionRule fusion{s_.merge_threshold, s_.merge_speed, s_.particle_size * std::ldexp(1.0, s_.coarse_levels)};
   const std::size_t merged = conserve([&] { return merge_particles(p_, pairs_, ground_, fusion); });
   splits_ += split;

@@ -6,12 +6,15 @@
 #include <cmath>
 #include <limits>
 
+#include <omp.h>
+
 namespace talus {
 namespace {
 
 // Radii up to R0 2^kMostClasses get a class of their own; wider ones share the last (its reach
 // is then raised to their largest radius).
 constexpr int kMostClasses = 24;
+constexpr std::size_t kPossibleClasses = kMostClasses + 1;
 
 // Bins across the reach of a class (-): narrower bins follow a query's circle more closely, so
 // it reads fewer candidates, but it visits more rows of bins, and each row ends its loop with a
@@ -43,67 +46,100 @@ long clamped_bin(double offset, double bin, long count) {
   return static_cast<long>(b);
 }
 
+// body(part, first, last) for each of `parts` contiguous parts [first, last) of the particles
+// 0..n-1, on up to `parts` threads. A part's bounds depend only on n and parts, never on the
+// threads the region gets, so passes over the same parts agree.
+template <class Body>
+void for_each_part(std::size_t n, std::size_t parts, Body&& body) {
+#pragma omp parallel num_threads(static_cast<int>(parts)) if (parts > 1)
+  {
+    const auto team = static_cast<std::size_t>(omp_get_num_threads());
+    for (auto part = static_cast<std::size_t>(omp_get_thread_num()); part < parts; part += team) {
+      body(part, n * part / parts, n * (part + 1) / parts);
+    }
+  }
+}
+
 }  // namespace
 
-void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>& radii, double smallest_radius) {
+void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>& radii, double smallest_radius,
+                         int threads) {
   const std::size_t n = particles.size();
   class_index_.resize(n);
-  int top = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    class_index_[i] = static_cast<std::uint8_t>(class_of(radii[i], smallest_radius));
-    top = std::max(top, static_cast<int>(class_index_[i]));
-  }
-  const std::size_t class_count = n == 0 ? 0 : static_cast<std::size_t>(top) + 1;
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  std::vector<double> min_x(class_count, kInfinity), min_y(class_count, kInfinity);
-  std::vector<double> max_x(class_count, -kInfinity), max_y(class_count, -kInfinity), widest(class_count, 0.0);
-  std::vector<std::size_t> members(class_count, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t k = class_index_[i];
-    min_x[k] = std::min(min_x[k], particles.x[i]);
-    max_x[k] = std::max(max_x[k], particles.x[i]);
-    min_y[k] = std::min(min_y[k], particles.y[i]);
-    max_y[k] = std::max(max_y[k], particles.y[i]);
-    widest[k] = std::max(widest[k], radii[i]);
-    ++members[k];
+  bin_of_.resize(n);
+  const std::size_t parts = static_cast<std::size_t>(std::max(threads, 1));
+  part_bounds_.assign(parts * kPossibleClasses, ClassBounds{});
+
+  // The particles' classes and, per part, each class's bounds.
+  for_each_part(n, parts, [&](std::size_t part, std::size_t first, std::size_t last) {
+    ClassBounds* bounds = part_bounds_.data() + part * kPossibleClasses;
+    for (std::size_t i = first; i < last; ++i) {
+      const int k = class_of(radii[i], smallest_radius);
+      class_index_[i] = static_cast<std::uint8_t>(k);
+      bounds[k].add(particles.x[i], particles.y[i], radii[i]);
+    }
+  });
+  ClassBounds bounds[kPossibleClasses];  // of every class, whole
+  std::size_t class_count = 0;
+  for (std::size_t k = 0; k < kPossibleClasses; ++k) {
+    for (std::size_t part = 0; part < parts; ++part) bounds[k].merge(part_bounds_[part * kPossibleClasses + k]);
+    if (bounds[k].members > 0) class_count = k + 1;
   }
 
   classes_.resize(class_count);  // each class keeps its bins' storage from the last rebuild
-  std::size_t first_slot = 0;
   std::vector<std::size_t> first_bin(class_count + 1, 0);  // the classes' bins, end to end
   for (std::size_t k = 0; k < class_count; ++k) {
     RadiusClass& c = classes_[k];
+    const ClassBounds& b = bounds[k];
     first_bin[k + 1] = first_bin[k];
     c.columns = c.rows = 0;
     c.start.clear();
-    if (members[k] == 0) continue;
-    c.reach = std::max(std::ldexp(smallest_radius, static_cast<int>(k)), widest[k]);
-    const double width = max_x[k] - min_x[k], height = max_y[k] - min_y[k];
-    const double sparse = std::sqrt(width * height / (kMostBinsPerParticle * static_cast<double>(members[k])));
+    if (b.members == 0) continue;
+    c.reach = std::max(std::ldexp(smallest_radius, static_cast<int>(k)), b.widest);
+    const double width = b.max_x - b.min_x, height = b.max_y - b.min_y;
+    const double sparse = std::sqrt(width * height / (kMostBinsPerParticle * static_cast<double>(b.members)));
     c.bin = std::max(c.reach / kBinsPerReach, sparse);
-    c.origin_x = min_x[k];
-    c.origin_y = min_y[k];
+    c.origin_x = b.min_x;
+    c.origin_y = b.min_y;
     c.columns = static_cast<long>(width / c.bin) + 1;
     c.rows = static_cast<long>(height / c.bin) + 1;
     const std::size_t bins = static_cast<std::size_t>(c.columns * c.rows);
     c.start.assign(bins + 1, 0);
-    c.start[0] = static_cast<std::uint32_t>(first_slot);
-    first_slot += members[k];
     first_bin[k + 1] = first_bin[k] + bins;
   }
 
-  // Counting sort by (class, bin), stable in the particle index.
-  bin_of_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    RadiusClass& c = classes_[class_index_[i]];
-    const long column = clamped_bin(particles.x[i] - c.origin_x, c.bin, c.columns);
-    const long row = clamped_bin(particles.y[i] - c.origin_y, c.bin, c.rows);
-    bin_of_[i] = static_cast<std::uint32_t>(row * c.columns + column);
-    ++c.start[bin_of_[i] + 1];
+  // Counting sort by (class, bin), stable in the particle index: each part counts its particles
+  // per bin, and a bin holds the particles of one part after those of the parts before it.
+  const std::size_t all_bins = first_bin.back();
+  part_counts_.assign(parts * all_bins, 0);
+  for_each_part(n, parts, [&](std::size_t part, std::size_t first, std::size_t last) {
+    std::uint32_t* counts = part_counts_.data() + part * all_bins;
+    for (std::size_t i = first; i < last; ++i) {
+      const std::size_t k = class_index_[i];
+      const RadiusClass& c = classes_[k];
+      const long column = clamped_bin(particles.x[i] - c.origin_x, c.bin, c.columns);
+      const long row = clamped_bin(particles.y[i] - c.origin_y, c.bin, c.rows);
+      bin_of_[i] = static_cast<std::uint32_t>(row * c.columns + column);
+      ++counts[first_bin[k] + bin_of_[i]];
+    }
+  });
+  // Each bin's first slot, and each part's first slot in it.
+  std::uint32_t slot = 0;
+  for (std::size_t k = 0; k < class_count; ++k) {
+    std::vector<std::uint32_t>& start = classes_[k].start;
+    if (start.empty()) continue;
+    for (std::size_t b = 0; b + 1 < start.size(); ++b) {
+      start[b] = slot;
+      for (std::size_t part = 0; part < parts; ++part) {
+        std::uint32_t& count = part_counts_[part * all_bins + first_bin[k] + b];
+        const std::uint32_t members = count;
+        count = slot;
+        slot += members;
+      }
+    }
+    start.back() = slot;
   }
-  for (RadiusClass& c : classes_) {
-    for (std::size_t b = 1; b < c.start.size(); ++b) c.start[b] += c.start[b - 1];
-  }
+
   index_.resize(n);
   x_.resize(n);
   y_.resize(n);
@@ -112,22 +148,20 @@ void PairSearch::rebuild(const ParticleSet& particles, const std::vector<double>
   inverse_.resize(n);
   mass_.resize(n);
   slot_.resize(n);
-  next_slot_.resize(first_bin.back());
-  for (std::size_t k = 0; k < class_count; ++k) {
-    const std::vector<std::uint32_t>& start = classes_[k].start;
-    if (!start.empty()) std::copy(start.begin(), start.end() - 1, next_slot_.begin() + static_cast<long>(first_bin[k]));
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t slot = next_slot_[first_bin[class_index_[i]] + bin_of_[i]]++;
-    index_[slot] = static_cast<std::uint32_t>(i);
-    slot_[i] = slot;
-    x_[slot] = particles.x[i];
-    y_[slot] = particles.y[i];
-    radius_[slot] = radii[i];
-    radius2_[slot] = radii[i] * radii[i];
-    inverse_[slot] = 1.0 / radii[i];
-    mass_[slot] = particles.mass[i];
-  }
+  for_each_part(n, parts, [&](std::size_t part, std::size_t first, std::size_t last) {
+    std::uint32_t* next_slot = part_counts_.data() + part * all_bins;
+    for (std::size_t i = first; i < last; ++i) {
+      const std::uint32_t at = next_slot[first_bin[class_index_[i]] + bin_of_[i]]++;
+      index_[at] = static_cast<std::uint32_t>(i);
+      slot_[i] = at;
+      x_[at] = particles.x[i];
+      y_[at] = particles.y[i];
+      radius_[at] = radii[i];
+      radius2_[at] = radii[i] * radii[i];
+      inverse_[at] = 1.0 / radii[i];
+      mass_[at] = particles.mass[i];
+    }
+  });
 }
 
 std::span<const std::uint32_t> PairSearch::find_pairs(double x, double y, double radius, std::uint32_t self) const {

@@ -15,8 +15,10 @@
 // the thread count.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -27,8 +29,10 @@ namespace talus {
 class PairSearch {
  public:
   // Sorts every particle into its radius class and bin. radii[i] is particle i's radius (m);
-  // smallest_radius is R0 (m), the upper bound of class 0.
-  void rebuild(const ParticleSet& particles, const std::vector<double>& radii, double smallest_radius);
+  // smallest_radius is R0 (m), the upper bound of class 0. On up to `threads` threads, each
+  // sorting a contiguous part of the particles; the slots are the same for any count.
+  void rebuild(const ParticleSet& particles, const std::vector<double>& radii, double smallest_radius,
+               int threads = 1);
 
   // The slot of every particle j != self with (x_j - x)^2 + (y_j - y)^2 < max(radius, R_j)^2, in
   // the fixed order, in storage of the calling thread that the thread's next query overwrites.
@@ -59,6 +63,30 @@ class PairSearch {
     std::vector<std::uint32_t> start;  // per bin, its first slot; one extra at the end
   };
 
+  // The extent (m), widest radius (m) and count of a class's particles, or of a part of them.
+  struct ClassBounds {
+    double min_x = std::numeric_limits<double>::infinity(), min_y = std::numeric_limits<double>::infinity();
+    double max_x = -std::numeric_limits<double>::infinity(), max_y = -std::numeric_limits<double>::infinity();
+    double widest = 0;
+    std::size_t members = 0;
+    void add(double x, double y, double radius) {
+      min_x = std::min(min_x, x);
+      max_x = std::max(max_x, x);
+      min_y = std::min(min_y, y);
+      max_y = std::max(max_y, y);
+      widest = std::max(widest, radius);
+      ++members;
+    }
+    void merge(const ClassBounds& other) {
+      min_x = std::min(min_x, other.min_x);
+      max_x = std::max(max_x, other.max_x);
+      min_y = std::min(min_y, other.min_y);
+      max_y = std::max(max_y, other.max_y);
+      widest = std::max(widest, other.widest);
+      members += other.members;
+    }
+  };
+
   std::size_t scan_class(const RadiusClass& c, double x, double y, double radius, std::uint32_t self_slot,
                          std::uint32_t* pairs, std::size_t count) const;
 
@@ -70,7 +98,8 @@ class PairSearch {
   // Work arrays of rebuild, kept so that the rebuild at every substep does not allocate.
   std::vector<std::uint8_t> class_index_;  // per particle
   std::vector<std::uint32_t> bin_of_;      // per particle, its bin within its class
-  std::vector<std::uint32_t> next_slot_;   // per bin of all classes, the next free slot
+  std::vector<ClassBounds> part_bounds_;   // per part of the particles, per possible class
+  std::vector<std::uint32_t> part_counts_; // per part, per bin of all classes: count, then next free slot
 };
 
 }  // namespace talus

@@ -46,17 +46,25 @@ std::size_t expect_brute_force_pairs(const PairSearch& search, const ParticleSet
   return pairs;
 }
 
+// Adds `count` particles at random in a square of `side` (m), of 1-2 kg: a share
+// `narrow_share` of radius 0.5 m, the others between 0.5 m and widest x 0.5 m.
+void add_mixed_patch(std::mt19937& generator, int count, double side, double narrow_share, double widest,
+                     ParticleSet& p, std::vector<double>& radii) {
+  std::uniform_real_distribution<double> coordinate(0.0, side), unit(0.0, 1.0);
+  for (int k = 0; k < count; ++k) {
+    p.add(1.0 + unit(generator), {coordinate(generator), coordinate(generator), 0.0}, {0, 0, 0}, 0.5);
+    radii.push_back(unit(generator) < narrow_share ? 0.5 : 0.5 * std::pow(widest, unit(generator)));
+  }
+}
+
 TEST(PairSearch, FindsExactlyTheBruteForcePairsOverManyClasses) {
   // A dense patch of narrow particles, wider ones among them (radii 0.5 to 12 m: classes 0 to 5
   // with R0 = 0.5 m) and a few far-away stragglers that make the wide classes sparse.
   std::mt19937 generator(11);
-  std::uniform_real_distribution<double> coordinate(0.0, 30.0), unit(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
   ParticleSet p;
   std::vector<double> radii;
-  for (int k = 0; k < 600; ++k) {
-    p.add(1.0 + unit(generator), {coordinate(generator), coordinate(generator), 0.0}, {0, 0, 0}, 0.5);
-    radii.push_back(unit(generator) < 0.8 ? 0.5 : 0.5 * std::pow(24.0, unit(generator)));
-  }
+  add_mixed_patch(generator, 600, 30.0, 0.8, 24.0, p, radii);
   for (int k = 0; k < 5; ++k) {
     p.add(1.0, {2000.0 * unit(generator), -1500.0 * unit(generator), 0.0}, {0, 0, 0}, 0.5);
     radii.push_back(6.0 * unit(generator) + 0.5);
@@ -123,6 +131,29 @@ TEST(PairSearch, OrderDependsOnlyOnTheParticles) {
     EXPECT_EQ(found_pairs(first, p, radii, i), found_pairs(second, p, radii, i));
   }
   EXPECT_TRUE(first.find_pairs(500.0, -500.0, 1.0, 0).empty());
+}
+
+TEST(PairSearch, SortingOnSeveralThreadsGivesTheSameSlots) {
+  // The rebuild sorts contiguous parts of the particles on their own threads: for any number of
+  // parts (more than the machine's cores included) every slot and every query's order of pairs
+  // must be those of the one-thread sort.
+  std::mt19937 generator(17);
+  ParticleSet p;
+  std::vector<double> radii;
+  add_mixed_patch(generator, 1000, 20.0, 0.7, 6.0, p, radii);
+  PairSearch single;
+  single.rebuild(p, radii, 0.5, 1);
+  for (const int threads : {2, 3, 7}) {
+    PairSearch parallel;
+    parallel.rebuild(p, radii, 0.5, threads);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      ASSERT_EQ(found_pairs(parallel, p, radii, i), found_pairs(single, p, radii, i)) << threads << " threads, " << i;
+    }
+    for (std::uint32_t s = 0; s < p.size(); ++s) {
+      ASSERT_EQ(parallel.index(s), single.index(s)) << threads << " threads, slot " << s;
+      ASSERT_EQ(parallel.mass(s), single.mass(s));
+    }
+  }
 }
 
 }  // namespace
