@@ -157,9 +157,10 @@ class MudflowRun {
     const bool parallel = threads_ > 1 && loops_.parallel() && count >= static_cast<std::size_t>(s_.parallel_particles);
     return parallel ? threads_ : 1;
   }
-  // The pair search over every particle with the given radii, sorted on the loops' threads.
-  void rebuild_pairs(const std::vector<double>& radii) {
-    pairs_.rebuild(p_, radii, s_.particle_size * kSupportPerSpacing, threads_for(p_.size()));
+  // The pair search over every particle with the given radii, sorted on the threads of the loops
+  // over `active` particles that will use it (one thread for a short substep's few particles).
+  void rebuild_pairs(const std::vector<double>& radii, std::size_t active) {
+    pairs_.rebuild(p_, radii, s_.particle_size * kSupportPerSpacing, threads_for(active));
   }
 
   double step_of(int level) const { return level_steps_[static_cast<std::size_t>(level)]; }
@@ -269,7 +270,7 @@ void MudflowRun::place_all_on_ground() {
 // pair search's copies of the positions, masses and smoothing radii of the latest densities),
 // with the column states and the smoothing radii for the next evaluation; then the forces.
 void MudflowRun::evaluate(const std::vector<std::uint32_t>& list) {
-  rebuild_pairs(smoothing_);
+  rebuild_pairs(smoothing_, list.size());
   for_each_listed(list, [&](std::size_t i) {
     const double sigma = gather_density(p_, pairs_, i, smoothing_[i], neighbours_[i]);
     set_column_state(p_, i, sigma, normals_.z[i], column_);
@@ -487,10 +488,10 @@ bool MudflowRun::adapt() {
     }
     return count;
   };
-  rebuild_pairs(p_.radius);
+  rebuild_pairs(p_.radius, p_.size());
   const FissionRule fission{s_.split_threshold, s_.particle_size};
   const std::size_t split = conserve([&] { return split_particles(p_, pairs_, ground_, fission); });
-  rebuild_pairs(p_.radius);
+  rebuild_pairs(p_.radius, p_.size());
   const FusionRule fusion{s_.merge_threshold, s_.merge_speed, s_.particle_size * std::ldexp(1.0, s_.coarse_levels)};
   const std::size_t merged = conserve([&] { return merge_particles(p_, pairs_, ground_, fusion); });
   splits_ += split;
