@@ -58,6 +58,11 @@ ParameterTable parameter_table(MudflowOptions& o) {
             "coarse steps between timed trials of one thread against all threads for the particle loops, which then "
             "run the faster way (0: always all threads); the layers do not depend on it",
             &s.parallel_check_period);
+  table.add("run", "interleaved_particles", "",
+            "threads with at least this many particles to evaluate compute each particle's forces as soon as the "
+            "densities they read are done, while its neighbour list is in the cache; fewer: all densities first; the "
+            "layers do not depend on it",
+            &s.interleaved_particles);
   table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density);
   table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity);
   table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size);
@@ -157,6 +162,8 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
                 s.stop_energy_fraction, "expected a fraction in [0, 1)");
   check.require(s.threads >= 0, "run", "threads", s.threads, "expected 0 (all cores) or more");
   check.require(s.parallel_particles >= 1, "run", "parallel_particles", s.parallel_particles, "expected 1 or more");
+  check.require(s.interleaved_particles >= 1, "run", "interleaved_particles", s.interleaved_particles,
+                "expected 1 or more");
   check.require(s.parallel_check_period == 0 || s.parallel_check_period >= 3, "run", "parallel_check_period",
                 s.parallel_check_period, "expected 0 (always all threads) or 3 or more coarse steps");
   check.require(s.mud_density >= 1000.0 && s.mud_density <= 3000.0, "mud", "density", s.mud_density,

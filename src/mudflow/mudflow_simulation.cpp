@@ -14,6 +14,7 @@
 
 #include "talus/core/errors.hpp"
 #include "talus/mudflow/entrainment.hpp"
+#include "talus/mudflow/evaluation_order.hpp"
 #include "talus/mudflow/flow_density.hpp"
 #include "talus/mudflow/flow_forces.hpp"
 #include "talus/mudflow/flow_guard.hpp"
@@ -59,6 +60,7 @@ void validate(const MudflowSettings& s) {
   require(s.stop_energy_fraction >= 0 && s.stop_energy_fraction < 1, "the stop energy fraction must lie in [0, 1)");
   require(s.threads >= 0, "the thread count must be 0 (all cores) or positive");
   require(s.parallel_particles >= 1, "the parallel particle count must be 1 or more");
+  require(s.interleaved_particles >= 1, "the interleaved particle count must be 1 or more");
   require(s.parallel_check_period == 0 || s.parallel_check_period >= 3,
           "the parallel check period must be 0 (always parallel) or at least 3 coarse steps");
   require(std::isfinite(s.mud_density) && s.mud_density > 0, "the mud density must be positive (kg/m3)");
@@ -170,6 +172,8 @@ class MudflowRun {
   void resize_work();
   void place_all_on_ground();
   void evaluate(const std::vector<std::uint32_t>& list);
+  void update_density(std::size_t i);
+  void update_forces(std::size_t i);
   void evaluate_all();
   int wanted_level(std::size_t i) const;
   void kick(std::size_t i, double duration);
@@ -201,6 +205,9 @@ class MudflowRun {
   double reference_elevation_ = 0;  // m: lowest foot at the release (potential energy zero)
   FootNormals normals_;
   std::vector<NeighbourList> neighbours_;
+  // Per thread, reused: evaluate_part_in_order's scratch and the forces left for after every density.
+  std::vector<std::vector<NeighbourSpan>> spans_;
+  std::vector<std::vector<std::uint32_t>> waiting_;
   std::vector<double> smoothing_;         // m: support radius R_s of the sums (flow_density.hpp)
   std::vector<BasalResistance> resistance_;
   std::vector<std::uint8_t> wanted_;      // level the criteria ask for (with the guard's depth)
@@ -266,45 +273,74 @@ void MudflowRun::place_all_on_ground() {
 }
 
 // Density of every listed particle, then the forces, basal resistance and wanted level of the
-// flowing ones (paper 4.1). Two passes, so each reads only finished values: the sums (over the
-// pair search's copies of the positions, masses and smoothing radii of the latest densities),
-// with the column states and the smoothing radii for the next evaluation; then the forces.
+// flowing ones (paper 4.1). The sums read the pair search's copies of the positions, masses and
+// smoothing radii of the latest densities; the forces read the neighbours' new densities. A long
+// list is evaluated in the order of evaluation_order.hpp, each thread's forces following its
+// densities while the neighbour lists are in the cache; a shorter one in two passes.
 void MudflowRun::evaluate(const std::vector<std::uint32_t>& list) {
   rebuild_pairs(smoothing_, list.size());
-  for_each_listed(list, [&](std::size_t i) {
-    const double sigma = gather_density(p_, pairs_, i, smoothing_[i], neighbours_[i]);
-    set_column_state(p_, i, sigma, normals_.z[i], column_);
-    smoothing_[i] = smoothing_radius(p_, i);
-  });
-  const double g = s_.gravity;
-  const double cell = std::max(ground_.spec().cell_width(), ground_.spec().cell_height());
-  for_each_listed(list, [&](std::size_t i) {
-    if (p_.state[i] != ParticleState::flowing) return;
-    const Eigen::Vector3d a = flow_acceleration(p_, i, neighbours_[i], normals_, forces_);
-    p_.ax[i] = a.x();
-    p_.ay[i] = a.y();
-    p_.az[i] = a.z();
-    const Eigen::Vector3d v = p_.velocity(i);
-    const double speed = v.norm();
-    const double cos_slope = normals_.z[i];
-    double normal_acceleration = g * cos_slope;
-    const NodeSquare square = ground_.locate(p_.x[i], p_.y[i]);
-    if (s_.curvature && speed > 0.0) {
-      const double spacing = p_.radius[i] / kSupportPerSpacing;
-      const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, 0.5 * std::max(cell, spacing));
-      normal_acceleration = std::max(0.0, normal_acceleration + kappa * speed * speed);
+  const int threads = threads_for(list.size());
+  if (list.size() < static_cast<std::size_t>(s_.interleaved_particles) * static_cast<std::size_t>(threads)) {
+    for_each_listed(list, [&](std::size_t i) { update_density(i); });
+    for_each_listed(list, [&](std::size_t i) { update_forces(i); });
+  } else {
+    const auto density = [this](std::uint32_t i) {
+      update_density(i);
+      return neighbour_span(i, neighbours_[i]);
+    };
+    const auto forces = [this](std::uint32_t k) { update_forces(k); };
+    const auto parts = static_cast<std::size_t>(threads);
+    spans_.resize(parts);
+    waiting_.resize(parts);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+      const auto part = static_cast<std::size_t>(omp_get_thread_num());
+      const auto count = static_cast<std::size_t>(omp_get_num_threads());
+      evaluate_part_in_order(list, list.size() * part / count, list.size() * (part + 1) / count, density, forces,
+                             spans_[part], waiting_[part]);
+#pragma omp barrier
+      for (const std::uint32_t k : waiting_[part]) update_forces(k);
     }
-    BasalContact contact;
-    contact.depth = p_.depth[i];
-    contact.normal_acceleration = normal_acceleration;
-    contact.lithology_friction = ground_.material_field(&GroundMaterial::friction, square);
-    contact.vegetation_deperdition = ground_.material_field(&GroundMaterial::vegetation_deperdition, square);
-    resistance_[i] = basal_resistance(s_.rheology, contact, s_.mud_density, g);
-    wanted_[i] = static_cast<std::uint8_t>(wanted_level(i));
-  });
+  }
   for (const std::uint32_t i : list) {
     if (p_.state[i] == ParticleState::flowing) ++particle_steps_;
   }
+}
+
+// Paper 4.1: the areal density and column state of particle i and its smoothing radius for the
+// next evaluation.
+void MudflowRun::update_density(std::size_t i) {
+  const double sigma = gather_density(p_, pairs_, i, smoothing_[i], neighbours_[i]);
+  set_column_state(p_, i, sigma, normals_.z[i], column_);
+  smoothing_[i] = smoothing_radius(p_, i);
+}
+
+// Paper 4.1: the forces on flowing particle i, its basal resistance and the level it wants.
+void MudflowRun::update_forces(std::size_t i) {
+  if (p_.state[i] != ParticleState::flowing) return;
+  const double g = s_.gravity;
+  const double cell = std::max(ground_.spec().cell_width(), ground_.spec().cell_height());
+  const Eigen::Vector3d a = flow_acceleration(p_, i, neighbours_[i], normals_, forces_);
+  p_.ax[i] = a.x();
+  p_.ay[i] = a.y();
+  p_.az[i] = a.z();
+  const Eigen::Vector3d v = p_.velocity(i);
+  const double speed = v.norm();
+  const double cos_slope = normals_.z[i];
+  double normal_acceleration = g * cos_slope;
+  const NodeSquare square = ground_.locate(p_.x[i], p_.y[i]);
+  if (s_.curvature && speed > 0.0) {
+    const double spacing = p_.radius[i] / kSupportPerSpacing;
+    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, 0.5 * std::max(cell, spacing));
+    normal_acceleration = std::max(0.0, normal_acceleration + kappa * speed * speed);
+  }
+  BasalContact contact;
+  contact.depth = p_.depth[i];
+  contact.normal_acceleration = normal_acceleration;
+  contact.lithology_friction = ground_.material_field(&GroundMaterial::friction, square);
+  contact.vegetation_deperdition = ground_.material_field(&GroundMaterial::vegetation_deperdition, square);
+  resistance_[i] = basal_resistance(s_.rheology, contact, s_.mud_density, g);
+  wanted_[i] = static_cast<std::uint8_t>(wanted_level(i));
 }
 
 void MudflowRun::evaluate_all() {

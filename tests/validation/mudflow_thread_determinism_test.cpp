@@ -1,7 +1,8 @@
 // Same seed, same inputs: bit-identical layers at 1 and 2 threads (issue 5; docs/mudflow.md
 // "Determinism"), for a uniform run that entrains (its 720 particles are enough for the particle
 // loops to run in parallel) and for an adaptive one, each over the first 4 s of the chute's flow
-// (down the erodible bed), and for loops that switch between one and two threads.
+// (down the erodible bed), for loops that switch between one and two threads, and for the
+// interleaved order of evaluation (evaluation_order.hpp), which must give the two passes' layers.
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -73,6 +74,32 @@ TEST(MudflowThreadDeterminism, SwitchingBetweenOneAndTwoThreadsChangesNothing) {
   switching.parallel_check_period = 3;
   const MudflowResult two = run_mudflow(chute.ground_model, chute.release_set, &chute.erodible, switching, nullptr);
   expect_identical(one, two);
+}
+
+// Every substep evaluated in the interleaved order (a thread's forces right after the densities
+// they read), on one and on two threads, against the two passes: the same layers, adaptive and
+// uniform. The chute's lists are far shorter than the default threshold, so it is set to 1.
+TEST(MudflowThreadDeterminism, InterleavedEvaluationGivesTheTwoPassesLayers) {
+  const mudflow_scenes::Chute chute;
+  for (const bool adaptive : {false, true}) {
+    SCOPED_TRACE(adaptive ? "adaptive" : "uniform");
+    MudflowSettings two_passes = first_seconds(adaptive, 1);
+    two_passes.interleaved_particles = 1 << 30;
+    const MudflowResult reference =
+        run_mudflow(chute.ground_model, chute.release_set, &chute.erodible, two_passes, nullptr);
+    for (const int threads : {1, 2}) {
+      MudflowSettings interleaved = first_seconds(adaptive, threads);
+      interleaved.interleaved_particles = 1;
+      const MudflowResult result =
+          run_mudflow(chute.ground_model, chute.release_set, &chute.erodible, interleaved, nullptr);
+      EXPECT_TRUE(same_bits(reference.layers.flow_depth_max, result.layers.flow_depth_max)) << threads;
+      EXPECT_TRUE(same_bits(reference.layers.velocity_max, result.layers.velocity_max)) << threads;
+      EXPECT_TRUE(same_bits(reference.layers.pressure_max, result.layers.pressure_max)) << threads;
+      EXPECT_TRUE(same_bits(reference.layers.deposit_depth, result.layers.deposit_depth)) << threads;
+      EXPECT_TRUE(same_bits(reference.layers.arrival_time, result.layers.arrival_time)) << threads;
+      EXPECT_EQ(reference.particle_steps, result.particle_steps) << threads;
+    }
+  }
 }
 
 }  // namespace

@@ -31,6 +31,8 @@ struct MudflowSettings {
   int parallel_particles = 256;     // per-particle loops over fewer particles run on one thread
   int parallel_check_period = 20;   // coarse steps between timed trials of one thread against all for the
                                     // per-particle loops (parallel_loop_choice.hpp); 0: always all threads
+  int interleaved_particles = 4096; // threads with at least this many particles to evaluate compute each one's
+                                    // forces right after the densities they read (evaluation_order.hpp)
   // Mud and particles.
   double mud_density = 2000;        // rho0 (kg/m3)
   double gravity = 9.81;            // m/s2
