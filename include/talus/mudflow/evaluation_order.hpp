@@ -7,7 +7,7 @@
 // still in the cache. A particle with a neighbour in another thread's part waits until every
 // thread's densities are done. Only the moment each value is computed changes, never its inputs,
 // so the results are those of the two passes, for any number of parts. Finding the spans costs
-// about 3% more instructions, so the run keeps two passes for parts short enough for their lists
+// about 4% more instructions, so the run keeps two passes for parts short enough for their lists
 // to stay in the cache anyway (MudflowSettings::interleaved_particles).
 #pragma once
 
