@@ -22,6 +22,7 @@
 #include "talus/mudflow/pair_search.hpp"
 #include "talus/mudflow/particle_fission.hpp"
 #include "talus/mudflow/particle_fusion.hpp"
+#include "talus/mudflow/particle_parts.hpp"
 #include "talus/mudflow/release_particles.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 #include "talus/mudflow/surface_following.hpp"
@@ -122,6 +123,7 @@ class MudflowRun {
         column_{settings.mud_density, settings.gravity},
         forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity},
         criteria_{settings.courant, settings.rheology.internal_viscosity},
+        largest_cell_(std::max(ground.spec().cell_width(), ground.spec().cell_height())),
         maps_(ground, settings.mud_density, settings.arrival_depth, erodible != nullptr),
         loops_(settings.parallel_check_period) {
     ReleaseLayout layout;
@@ -199,6 +201,7 @@ class MudflowRun {
   const ColumnConstants column_;
   const FlowForceConstants forces_;
   const StepCriteria criteria_;
+  const double largest_cell_;    // m: the DEM's larger cell side; curvature_along spans at least half of it
 
   ParticleSet p_;
   PairSearch pairs_;  // the sums' pairs, with the smoothing radii; the adaptivity's, with the support radii
@@ -292,15 +295,12 @@ void MudflowRun::evaluate(const std::vector<std::uint32_t>& list) {
     const auto parts = static_cast<std::size_t>(threads);
     spans_.resize(parts);
     waiting_.resize(parts);
-#pragma omp parallel num_threads(threads) if (threads > 1)
-    {
-      const auto part = static_cast<std::size_t>(omp_get_thread_num());
-      const auto count = static_cast<std::size_t>(omp_get_num_threads());
-      evaluate_part_in_order(list, list.size() * part / count, list.size() * (part + 1) / count, density, forces,
-                             spans_[part], waiting_[part]);
-#pragma omp barrier
+    for_each_part(list.size(), parts, [&](std::size_t part, std::size_t first, std::size_t last) {
+      evaluate_part_in_order(list, first, last, density, forces, spans_[part], waiting_[part]);
+    });
+    for_each_part(parts, parts, [&](std::size_t part, std::size_t, std::size_t) {
       for (const std::uint32_t k : waiting_[part]) update_forces(k);
-    }
+    });
   }
   for (const std::uint32_t i : list) {
     if (p_.state[i] == ParticleState::flowing) ++particle_steps_;
@@ -319,7 +319,6 @@ void MudflowRun::update_density(std::size_t i) {
 void MudflowRun::update_forces(std::size_t i) {
   if (p_.state[i] != ParticleState::flowing) return;
   const double g = s_.gravity;
-  const double cell = std::max(ground_.spec().cell_width(), ground_.spec().cell_height());
   const Eigen::Vector3d a = flow_acceleration(p_, i, neighbours_[i], normals_, forces_);
   p_.ax[i] = a.x();
   p_.ay[i] = a.y();
@@ -331,7 +330,7 @@ void MudflowRun::update_forces(std::size_t i) {
   const NodeSquare square = ground_.locate(p_.x[i], p_.y[i]);
   if (s_.curvature && speed > 0.0) {
     const double spacing = p_.radius[i] / kSupportPerSpacing;
-    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, 0.5 * std::max(cell, spacing));
+    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, 0.5 * std::max(largest_cell_, spacing));
     normal_acceleration = std::max(0.0, normal_acceleration + kappa * speed * speed);
   }
   BasalContact contact;

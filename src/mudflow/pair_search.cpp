@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include <omp.h>
+#include "talus/mudflow/particle_parts.hpp"
 
 namespace talus {
 namespace {
@@ -44,20 +44,6 @@ long clamped_bin(double offset, double bin, long count) {
   if (b < 0.0) return 0;
   if (b >= static_cast<double>(count - 1)) return count - 1;
   return static_cast<long>(b);
-}
-
-// body(part, first, last) for each of `parts` contiguous parts [first, last) of the particles
-// 0..n-1, on up to `parts` threads. A part's bounds depend only on n and parts, never on the
-// threads the region gets, so passes over the same parts agree.
-template <class Body>
-void for_each_part(std::size_t n, std::size_t parts, Body&& body) {
-#pragma omp parallel num_threads(static_cast<int>(parts)) if (parts > 1)
-  {
-    const auto team = static_cast<std::size_t>(omp_get_num_threads());
-    for (auto part = static_cast<std::size_t>(omp_get_thread_num()); part < parts; part += team) {
-      body(part, n * part / parts, n * (part + 1) / parts);
-    }
-  }
 }
 
 }  // namespace
