@@ -31,12 +31,13 @@ struct LithologyNumber {
   std::string_view comment;
 };
 
-constexpr std::array<LithologyNumber, 8> lithology_numbers{{
+constexpr std::array<LithologyNumber, 9> lithology_numbers{{
     {"elastic_slope", &LithologyClass::elastic_slope, "k1, Pa/m"},
     {"yield_pressure", &LithologyClass::yield_pressure, "Pa"},
     {"plastic_slope", &LithologyClass::plastic_slope, "k2, Pa/m"},
     {"unloading_slope", &LithologyClass::unloading_slope, "k3, Pa/m"},
-    {"friction", &LithologyClass::friction, "tan of the friction angle, -"},
+    {"friction", &LithologyClass::friction, "sliding, tan of the friction angle, -"},
+    {"rolling_friction", &LithologyClass::rolling_friction, "rolling, mu_r, -"},
     {"restitution_normal", &LithologyClass::restitution_normal, "fast mode, -"},
     {"restitution_tangential", &LithologyClass::restitution_tangential, "fast mode, -"},
     {"noise_amplitude", &LithologyClass::noise_amplitude, "m"},
@@ -274,6 +275,7 @@ class MaterialsReader {
     }
     if (!(c.yield_pressure > 0)) fail(at + "yield_pressure must be > 0, got " + toml_number(c.yield_pressure));
     if (!(c.friction >= 0)) fail(at + "friction must be >= 0, got " + toml_number(c.friction));
+    if (!(c.rolling_friction >= 0)) fail(at + "rolling_friction must be >= 0, got " + toml_number(c.rolling_friction));
     if (!(c.restitution_normal >= 0 && c.restitution_normal <= 1)) {
       fail(at + "restitution_normal must be within [0, 1], got " + toml_number(c.restitution_normal));
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -35,6 +36,7 @@ struct RockfallOptions {
   FullModelParameters full;
   double fracture_strength = FullModelParameters{}.fracture_strength / 1000.0;  // kN, into full.fracture_strength (N)
   std::vector<std::string> command_line;
+  std::optional<std::uint64_t> only_source, only_run;  // --only-source, --only-run
 };
 
 BlockShape parse_shape(const std::string& text) {
@@ -78,6 +80,9 @@ ParameterTable parameter_table(RockfallOptions& o) {
   table.add("stochastic", "friction_variation", "-", "friction scaled by U(1-v, 1+v)", &s.friction_variation);
   table.add("stochastic", "noise_frequency", "-", "Perlin base frequency times the rock diameter", &s.noise_frequency);
   table.add("stochastic", "noise_octaves", "", "Perlin octaves", &s.noise_octaves);
+  table.add("stochastic", "noise_reference_size", "m",
+            "rocks at least this large see the materials' noise amplitudes; a smaller rock sees them scaled by its size / this",
+            &s.noise_reference_size);
   auto& f = o.fast;
   table.add("fast_bounce", "gravity", "m/s2", "gravitational acceleration", &f.gravity);
   table.add("fast_bounce", "air_density", "kg/m3", "air density for drag", &f.air_density);
@@ -104,7 +109,7 @@ ParameterTable parameter_table(RockfallOptions& o) {
   table.add("full", "max_flight_step", "s", "longest time step in flight", &m.max_flight_step);
   table.add("full", "sample_spacing", "m", "longest path between two recorded samples", &m.sample_spacing);
   table.add("full", "friction_slip_speed", "m/s", "slip speed below which Coulomb friction is regularised", &m.friction_slip_speed);
-  table.add("full", "rolling_resistance", "-", "rolling friction coefficient as a multiple of the lithology's friction (0: pure rolling)",
+  table.add("full", "rolling_resistance", "-", "multiplier of the lithology's rolling friction (0: pure rolling)",
             &m.rolling_resistance);
   table.add("full", "guard", "", "detect blown-up steps and retry them with smaller steps", &m.guard);
   table.add("full", "max_retries", "", "step halvings before a run fails with exit code 3", &m.max_retries);
@@ -165,6 +170,35 @@ std::unique_ptr<TrajectoryModel> trajectory_model(const RockfallOptions& o) {
   return std::make_unique<FullModel>(o.full);
 }
 
+// The command line that reruns one trajectory alone: this run's, with --only-source and
+// --only-run set to it (docs/rockfall-full.md, section 5).
+std::string single_trajectory_command(const std::vector<std::string>& command_line, std::uint64_t source,
+                                      std::uint64_t run) {
+  std::string text;
+  for (std::size_t i = 0; i < command_line.size(); ++i) {
+    const std::string& word = command_line[i];
+    if (word == "--only-source" || word == "--only-run") {
+      ++i;
+      continue;
+    }
+    if (word.rfind("--only-source=", 0) == 0 || word.rfind("--only-run=", 0) == 0) continue;
+    const bool plain = !word.empty() && word.find_first_of(" \t'\"$\\") == std::string::npos;
+    text += (text.empty() ? "" : " ") + (plain ? word : "'" + word + "'");
+  }
+  return text + " --only-source " + std::to_string(source) + " --only-run " + std::to_string(run);
+}
+
+// run_rockfall, with a failing trajectory's error extended by the command that reproduces it.
+RockfallResult run_trajectories(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
+                                const TrajectoryModel& model, const RockfallOptions& o, TerminalProgress& progress) {
+  try {
+    return run_rockfall(ground, sources, model, o.settings, &progress);
+  } catch (const TrajectoryFailure& failure) {
+    throw NumericalFailure(std::string(failure.what()) + "; nothing was written; to rerun that trajectory alone: " +
+                           single_trajectory_command(o.command_line, failure.source, failure.run));
+  }
+}
+
 int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   // The scenario file sets every parameter it names, except those given as flags (pinned).
   if (!o.scenario.empty()) table.apply_scenario(o.scenario, {});
@@ -178,6 +212,16 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
     throw InputError("--density " + std::to_string(o.settings.rock.density) + ": expected 500-6000 kg/m3");
   }
   if (o.settings.runs_per_source == 0) throw InputError("--runs 0: at least one run per source");
+  const double reference = o.settings.stochastic.noise_reference_size;
+  if (!(reference > 0.0 && reference <= 100.0)) {
+    throw InputError("[stochastic] noise_reference_size " + std::to_string(reference) + ": expected 0-100 m");
+  }
+  if (o.only_run && *o.only_run >= o.settings.runs_per_source) {
+    throw InputError("--only-run " + std::to_string(*o.only_run) + ": runs are numbered 0 to --runs - 1 (" +
+                     std::to_string(o.settings.runs_per_source - 1) + ")");
+  }
+  o.settings.only_source = o.only_source;
+  o.settings.only_run = o.only_run;
   const int parts = o.full.fracture_parts;
   if (parts != 1 && parts != 2 && parts != 4 && parts != 8) {
     throw InputError("[rock] fracture_parts " + std::to_string(parts) + ": use 1 (intact), 2, 4 or 8");
@@ -200,6 +244,10 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   const gis::Scene scene = gis::load_scene(o.inputs);
   const GroundModel ground = scene.ground_model();
   const std::vector<ReleaseSource> sources = release_sources(*scene.release);
+  if (o.only_source && *o.only_source >= sources.size()) {
+    throw InputError("--only-source " + std::to_string(*o.only_source) + ": sources are numbered 0 to " +
+                     std::to_string(sources.size() - 1) + " (" + o.inputs.release.string() + ")");
+  }
   const double read_seconds = seconds_since(start);
   for (const auto& note : scene.notes) std::printf("note: %s\n", note.c_str());
   for (const auto& problem : scene.problems) std::printf("problem: %s\n", problem.c_str());
@@ -210,7 +258,7 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   const auto simulate_start = std::chrono::steady_clock::now();
   const std::unique_ptr<TrajectoryModel> model = trajectory_model(o);
   TerminalProgress progress;
-  const RockfallResult result = run_rockfall(ground, sources, *model, o.settings, &progress);
+  const RockfallResult result = run_trajectories(ground, sources, *model, o, progress);
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();
@@ -279,6 +327,9 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
   auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(1);
   cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
+  cmd->add_option("--only-source", o->only_source,
+                  "Simulate only this source (0-based, as source_id in trajectories.gpkg), to reproduce a trajectory");
+  cmd->add_option("--only-run", o->only_run, "Simulate only this run of each source (0-based, as run_id)");
   cmd->callback([o, table, &action, mode, runs, shape, size, density, seed] {
     const std::pair<CLI::Option*, const char*> flags[] = {{mode, "run.mode"},    {runs, "run.runs"},
                                                           {seed, "run.seed"},    {shape, "rock.shape"},

@@ -19,6 +19,7 @@ GroundMaterial GroundMaterial::from(const LithologyClass& lithology, double vege
   material.plastic_slope = lithology.plastic_slope;
   material.unloading_slope = lithology.unloading_slope;
   material.friction = lithology.friction;
+  material.rolling_friction = lithology.rolling_friction;
   material.restitution_normal = lithology.restitution_normal;
   material.restitution_tangential = lithology.restitution_tangential;
   material.noise_amplitude = lithology.noise_amplitude;

@@ -10,11 +10,13 @@ namespace talus {
 namespace {
 
 // Paper 3.4, "random variation of material parameters": the trajectory's multipliers, with the
-// restitutions kept at most 1 so that no impact creates energy.
+// restitutions kept at most 1 so that no impact creates energy; one friction multiplier scales
+// the sliding and the rolling friction alike.
 void vary(GroundMaterial& material, const MaterialVariation& variation) {
   material.restitution_normal = std::min(1.0, material.restitution_normal * variation.restitution_normal);
   material.restitution_tangential = std::min(1.0, material.restitution_tangential * variation.restitution_tangential);
   material.friction *= variation.friction;
+  material.rolling_friction *= variation.friction;
 }
 
 Eigen::Vector3d upward_normal(const Eigen::Vector2d& gradient) {

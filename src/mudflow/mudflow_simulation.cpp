@@ -336,7 +336,9 @@ void MudflowRun::update_forces(std::size_t i) {
   BasalContact contact;
   contact.depth = p_.depth[i];
   contact.normal_acceleration = normal_acceleration;
-  contact.lithology_friction = ground_.material_field(&GroundMaterial::friction, square);
+  // The mud's Coulomb friction scales the class's rolling friction, the single friction the table
+  // held before rock fall split it into sliding and rolling (docs/mudflow.md, rheologies).
+  contact.lithology_friction = ground_.material_field(&GroundMaterial::rolling_friction, square);
   contact.vegetation_deperdition = ground_.material_field(&GroundMaterial::vegetation_deperdition, square);
   resistance_[i] = basal_resistance(s_.rheology, contact, s_.mud_density, g);
   wanted_[i] = static_cast<std::uint8_t>(wanted_level(i));

@@ -12,6 +12,7 @@
 
 #include "talus/rockfall/fast_bounce_impact.hpp"
 #include "talus/rockfall/flight.hpp"
+#include "talus/rockfall/rolling.hpp"
 #include "talus/rockfall/surface_contact.hpp"
 
 namespace talus {
@@ -69,6 +70,7 @@ class FastBounceRun {
         rock_(rock),
         observer_(observer),
         mass_(rock.mass()),
+        inertia_(rock.inertia()),
         diameter_(std::cbrt(6.0 * rock.volume() / std::numbers::pi)),
         oriented_(rock.shape != BlockShape::sphere),
         flight_(parameters.gravity, AirDrag{parameters.air_density, parameters.drag_coefficient, rock.frontal_area()},
@@ -117,7 +119,7 @@ class FastBounceRun {
     } else if (-v_normal >= parameters_.contact_speed) {
       land(point, false);
     } else {
-      settle(point, p_, 0.0, 0.0);
+      touch_down(point, p_, 0.0, 0.0);
     }
     return std::nullopt;
   }
@@ -160,7 +162,9 @@ class FastBounceRun {
     if (t_ >= parameters_.max_time) return StopReason::max_time;
     const double speed = v_.norm();
     const GroundMaterial material = under_.material;
-    if (speed < parameters_.stop_speed && friction_holds(under_.normal, material.friction)) return StopReason::at_rest;
+    if (speed < parameters_.stop_speed && friction_holds(under_.normal, material.rolling_friction)) {
+      return StopReason::at_rest;
+    }
     if (speed == 0.0) {
       // Restart from rest down the fall line; a rock that comes back to rest within its own
       // diameter of its last restart is caught in a hollow between slopes too steep to hold it.
@@ -169,8 +173,11 @@ class FastBounceRun {
       has_restart_ = true;
       restart_xy_ = here;
     }
-    const Eigen::Vector3d a = contact_acceleration(v_, under_.normal, material.friction,
-                                                   material.vegetation_deperdition, parameters_.gravity);
+    // Azzoni et al. 1995: a rolling rock accelerates at A (g_t - mu_r g n_z v/|v| - c |v| v).
+    const Eigen::Vector3d pull = contact_acceleration(v_, under_.normal, material.rolling_friction,
+                                                      material.vegetation_deperdition, parameters_.gravity);
+    const double share = rolling_share(rolling_body(q_, h_), under_.normal, speed > 0.0 ? v_ : pull);
+    const Eigen::Vector3d a = share * pull;
     const double dt = std::min({parameters_.contact_time_step, duration_for_length(speed, a.norm(), step_length_),
                                 parameters_.max_time - t_});
     SurfaceMove move = move_on_surface(v_, a, dt);
@@ -196,20 +203,21 @@ class FastBounceRun {
       point = ground_.at(end.x(), end.y());
     }
     const bool takes_off = gap > parameters_.contact_tolerance && flight_clears(move.duration, h_end);
-    // Work of the Coulomb friction (exact on a plane) and of the vegetation over the step.
+    // Work of the rolling resistance (exact on a plane) and of the vegetation over the step.
     const double distance = move.displacement.norm();
     const double mean_square_speed = 0.5 * (speed * speed + move.velocity.squaredNorm());
     const double friction_work = mass_ * distance *
-                                 (material.friction * parameters_.gravity * under_.normal.z() +
+                                 (material.rolling_friction * parameters_.gravity * under_.normal.z() +
                                   material.vegetation_deperdition * mean_square_speed);
     const Eigen::Vector3d midpoint = p_ + 0.5 * move.displacement;
     if (!takes_off) {
       // Back onto the surface: the lift (or drop) off the tangent plane costs (or gives) m g dz
-      // of kinetic energy, so that following bumps and hollows creates no energy.
+      // of the rolling rock's kinetic energy 1/2 m |v|^2 / A, so that following bumps and hollows
+      // creates no energy.
       const double lift = point.height + h_end - end.z();
       const double square_speed = move.velocity.squaredNorm();
       if (square_speed > 0.0) {
-        const double kept = square_speed - 2.0 * parameters_.gravity * lift;
+        const double kept = square_speed - 2.0 * share * parameters_.gravity * lift;
         move.velocity *= kept > 0.0 ? std::sqrt(kept / square_speed) : 0.0;
       }
       end.z() += lift;
@@ -229,7 +237,7 @@ class FastBounceRun {
       land(point, true);
       return std::nullopt;
     }
-    settle(point, midpoint, friction_work, 0.0);
+    roll_on(point, midpoint, friction_work, share);
     sample_if_due();
     return std::nullopt;
   }
@@ -239,7 +247,10 @@ class FastBounceRun {
   // Paper 3.3, "Fast Bounce mode", step 2: the rock is moved up to touch the ground at `point`
   // (the ground under it) and the impulse reflects its velocity; a rebound slower than
   // contact_speed leaves it in contact. A touchdown slower than contact_speed along the normal
-  // is no impact: the rock settles.
+  // is no impact: the rock touches down and rolls. A rebound leaves with the rolling spin of its
+  // tangential velocity, and no more kinetic energy (translation and rotation) than the rock
+  // brought less the vegetation's share: the tangential velocity is scaled down where the spin
+  // would need more (docs/rockfall-fast.md, section 4).
   void land(const GroundPoint& point, bool report_arrival) {
     ground_z_ = point.height;
     p_.z() = ground_z_ + h_;
@@ -248,32 +259,59 @@ class FastBounceRun {
     if (report_arrival) report_sample();
     const Eigen::Vector3d& n = point.normal;
     if (-v_.dot(n) < parameters_.contact_speed) {
-      settle(point, p_, 0.0, 0.0);
+      touch_down(point, p_, 0.0, 0.0);
     } else {
+      const double brought = kinetic_energy();
       const ImpactResponse response = fast_bounce_impact(v_, n, point.material, mass_, diameter_);
       v_ = response.velocity;
       if (response.normal_speed < parameters_.contact_speed) {
-        settle(point, p_, response.friction_loss, response.deformation_loss);
+        touch_down(point, p_, response.friction_loss, response.deformation_loss);
       } else {
-        report_loss(p_, response.friction_loss, response.deformation_loss);
+        const RollingBody body = rolling_body(q_, h_);
+        const Eigen::Vector3d tangential = v_ - v_.dot(n) * n;
+        const double normal_energy = 0.5 * mass_ * response.normal_speed * response.normal_speed;
+        const double tangential_energy = 0.5 * mass_ * tangential.squaredNorm() +
+                                         rotation_energy(body, rolling_spin(body, n, tangential));
+        const double allowed = brought - response.friction_loss - normal_energy;
+        if (tangential_energy > allowed) v_ -= (1.0 - std::sqrt(std::max(0.0, allowed) / tangential_energy)) * tangential;
+        w_ = rolling_spin(body, n, v_ - v_.dot(n) * n);
+        report_loss(p_, response.friction_loss, brought - response.friction_loss - kinetic_energy());
         in_flight_ = true;
         hop_limit_ = response.normal_speed / (parameters_.gravity * n.z());
-        w_ = n.cross(v_ - v_.dot(n) * n) / h_;
       }
     }
     unsampled_ = true;
     report_sample();
   }
 
-  // Paper 3.3, fast mode's contact: the rock stays on the surface at `point`; its velocity loses
-  // the normal part (reported as deformation, with the losses the caller passes) and it spins at
-  // the rolling value.
-  void settle(const GroundPoint& point, const Eigen::Vector3d& at, double friction, double deformation) {
+  // The rock comes into contact at `point` from a flight, a release or a rebound too slow to
+  // leave: it loses its normal velocity (a deformation loss) and starts to roll, its tangential
+  // velocity and spin becoming rolling without slip by friction at the contact point
+  // (start_rolling, a friction loss). The caller's losses are reported with them.
+  void touch_down(const GroundPoint& point, const Eigen::Vector3d& at, double friction, double deformation) {
     const double v_normal = v_.dot(point.normal);
     v_ -= v_normal * point.normal;
-    report_loss(at, friction, deformation + 0.5 * mass_ * v_normal * v_normal);
+    const double before = translation_energy() + rotation_energy(rolling_body(q_, h_), w_);
+    v_ = start_rolling(rolling_body(q_, h_), point.normal, v_, w_);
+    w_ = rolling_spin(rolling_body(q_, h_), point.normal, v_);
+    report_loss(at, friction + before - kinetic_energy(), deformation + 0.5 * mass_ * v_normal * v_normal);
+    enter_contact(point);
+  }
+
+  // Paper 3.3, fast mode's contact, from one step to the next: the rock stays on the surface at
+  // `point` and keeps rolling; it loses the part of its velocity along the new normal, which
+  // takes the rolling rock's energy 1/2 m v_n^2 / A with it (reported as deformation, with the
+  // step's friction work).
+  void roll_on(const GroundPoint& point, const Eigen::Vector3d& at, double friction, double share) {
+    const double v_normal = v_.dot(point.normal);
+    v_ -= v_normal * point.normal;
+    w_ = rolling_spin(rolling_body(q_, h_), point.normal, v_);
+    report_loss(at, friction, 0.5 * mass_ * v_normal * v_normal / share);
+    enter_contact(point);
+  }
+
+  void enter_contact(const GroundPoint& point) {
     under_ = point;
-    w_ = point.normal.cross(v_) / h_;
     in_flight_ = false;
     clearance_ = 0.0;
   }
@@ -327,9 +365,16 @@ class FastBounceRun {
 
   StopReason outside(const Eigen::Vector3d& at) const { return reason_for_leaving(ground_.model().spec(), at); }
 
-  TrajectorySample sample() const {
-    return {t_, p_, v_, 0.5 * mass_ * v_.squaredNorm(), p_.z() - ground_z_};
+  // The rock as rolling sees it at orientation q, its contact point h below its centre.
+  RollingBody rolling_body(const Eigen::Quaterniond& q, double h) const {
+    const Eigen::Matrix3d rotation = q.toRotationMatrix();
+    return {mass_, rotation * inertia_ * rotation.transpose(), h};
   }
+  double translation_energy() const { return 0.5 * mass_ * v_.squaredNorm(); }
+  // Translation and rotation (J), as hazard practice counts a rock's energy.
+  double kinetic_energy() const { return translation_energy() + rotation_energy(rolling_body(q_, h_), w_); }
+
+  TrajectorySample sample() const { return {t_, p_, v_, kinetic_energy(), p_.z() - ground_z_}; }
   void report_sample() {
     observer_.on_sample(sample());
     travelled_ = 0.0;
@@ -348,6 +393,7 @@ class FastBounceRun {
   const Rock& rock_;
   TrajectoryObserver& observer_;
   const double mass_;          // kg
+  const Eigen::Matrix3d inertia_;  // kg m2 about the centre, local frame
   const double diameter_;      // m, of the sphere of the same volume: the vegetation's contact length
   const bool oriented_;        // the half height depends on the orientation
   const Flight flight_;

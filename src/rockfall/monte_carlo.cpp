@@ -23,6 +23,14 @@ constexpr int kTrajectoryNoiseTableBits = 8;
 
 double vary(CounterRandom& random, double variation) { return random.uniform(1.0 - variation, 1.0 + variation); }
 
+// Paper 3.4 gives the noise a frequency of the order of the rock's size; its slopes grow as the
+// amplitude over that wavelength. The table's amplitudes are those a rock of noise_reference_size
+// sees; a smaller rock sees them in proportion to its size, so that the noise's slopes do not
+// steepen without bound as rocks get smaller (docs/ground-model.md, "Noise and rock size").
+double noise_scale(const Rock& rock, const StochasticParameters& s) {
+  return std::min(1.0, rock.axes.maxCoeff() / s.noise_reference_size);
+}
+
 // A uniformly random orientation (Shoemake 1992, from three uniform numbers).
 Eigen::Quaterniond random_orientation(CounterRandom& random) {
   const double u1 = random.uniform(), u2 = random.uniform(), u3 = random.uniform();
@@ -110,7 +118,7 @@ RunDraws draw_run(const GroundModel& ground, const ReleaseSource& source, const 
   draws.variation.restitution_tangential = vary(random, s.restitution_variation);
   draws.variation.friction = vary(random, s.friction_variation);
   draws.noise.base_frequency = s.noise_frequency / draws.rock.axes.maxCoeff();
-  draws.noise.amplitude = 1.0;
+  draws.noise.amplitude = noise_scale(draws.rock, s);
   draws.noise.octaves = s.noise_octaves;
   draws.noise.seed = random.next_bits();
   draws.noise.table_bits = kTrajectoryNoiseTableBits;
@@ -140,10 +148,25 @@ std::vector<ReleaseSource> release_sources(const ReleaseSet& release) {
   return sources;
 }
 
+// The (source, run) pairs a run_rockfall call simulates, as flat indices source x runs + run, in
+// order: all of them, or those RockfallSettings::only_source and only_run select.
+std::vector<std::uint64_t> selected_runs(std::uint64_t sources, const RockfallSettings& settings) {
+  const std::uint64_t runs = settings.runs_per_source;
+  std::vector<std::uint64_t> selected;
+  for (std::uint64_t source = 0; source < sources; ++source) {
+    if (settings.only_source && *settings.only_source != source) continue;
+    for (std::uint64_t run = 0; run < runs; ++run) {
+      if (!settings.only_run || *settings.only_run == run) selected.push_back(source * runs + run);
+    }
+  }
+  return selected;
+}
+
 RockfallResult run_rockfall(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
                             const TrajectoryModel& model, const RockfallSettings& settings, Progress* progress) {
   const std::uint64_t runs = settings.runs_per_source;
-  const std::uint64_t total = static_cast<std::uint64_t>(sources.size()) * runs;
+  const std::vector<std::uint64_t> selected = selected_runs(sources.size(), settings);
+  const std::uint64_t total = selected.size();
   const std::uint64_t save_stride =
       settings.saved_trajectories == 0 ? 0 : std::max<std::uint64_t>(1, (total + settings.saved_trajectories - 1) / settings.saved_trajectories);
   const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
@@ -153,7 +176,7 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
   std::atomic<std::uint64_t> done{0};
   std::atomic<bool> cancelled{false};
   // A run that throws (NumericalFailure: exit code 3) ends them all; the earliest such run's
-  // exception is rethrown once every thread has left the loop.
+  // failure is thrown, with its source and run, once every thread has left the loop.
   std::exception_ptr failure;
   std::uint64_t failed_run = 0;
 
@@ -168,8 +191,9 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
     const bool reporter = omp_get_thread_num() == 0;
 
 #pragma omp for schedule(dynamic, 8)
-    for (std::uint64_t k = 0; k < total; ++k) {
+    for (std::uint64_t n = 0; n < total; ++n) {
       if (cancelled.load(std::memory_order_relaxed)) continue;
+      const std::uint64_t k = selected[n];
       const std::uint64_t source_index = k / runs, run = k % runs;
       RunDraws draws = draw_run(ground, sources[source_index], settings, source_index, run);
       const PerlinNoise noise(draws.noise);
@@ -177,13 +201,21 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       draws.start.position.z() = perturbed.height(draws.start.position.x(), draws.start.position.y()) +
                                  draws.rock.half_height(draws.start.orientation) + settings.stochastic.release_height;
       TrajectoryLine* line = nullptr;
-      if (save_stride != 0 && k % save_stride == 0) {
+      if (save_stride != 0 && n % save_stride == 0) {
         lines.push_back({source_index, run, StopReason::at_rest, 0, 0, {}});
         line = &lines.back();
       }
       observer.start(line);
       try {
         model.run(perturbed, draws.rock, draws.start, observer);
+      } catch (const NumericalFailure& e) {
+#pragma omp critical(talus_rockfall_failure)
+        if (failure == nullptr || k < failed_run) {
+          failure = std::make_exception_ptr(TrajectoryFailure(e.what(), source_index, run));
+          failed_run = k;
+        }
+        cancelled.store(true);
+        continue;
       } catch (...) {
 #pragma omp critical(talus_rockfall_failure)
         if (failure == nullptr || k < failed_run) {
@@ -194,7 +226,7 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
         continue;
       }
       recorder.commit();
-      result.runouts[k] = observer.path_length();
+      result.runouts[n] = observer.path_length();
       for (const StopReason reason : observer.stops()) ++stop_counts[static_cast<std::size_t>(reason)];
       fragments += observer.fragments();
       const std::uint64_t finished = done.fetch_add(1, std::memory_order_relaxed) + 1;

@@ -130,6 +130,7 @@ Piston PistonCarpet::make_piston(std::int64_t i, std::int64_t j) const {
   piston.area = spacing_ * spacing_ / point.normal.z();
   piston.cycle = StressCycle::of(point.material);
   piston.friction = point.material.friction;
+  piston.rolling_friction = point.material.rolling_friction;
   piston.vegetation_deperdition = point.material.vegetation_deperdition;
   return piston;
 }

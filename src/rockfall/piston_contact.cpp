@@ -160,6 +160,7 @@ void press_carpet(PistonCarpet& carpet, const PistonRange& range, const RigidRoc
     }
     touch.load = p * piston.area / cosine;
     touch.friction = piston.friction;
+    touch.rolling_friction = piston.rolling_friction;
     touch.vegetation_deperdition = piston.vegetation_deperdition;
     const Eigen::Vector3d force = touch.load * touch.normal;
     response.force += force;
@@ -204,7 +205,7 @@ FrictionImpulse friction_impulse(const std::vector<PistonTouch>& touches, const 
     const double lever = std::abs(touch.arm.dot(touch.normal));
     const Eigen::Matrix3d rolling_map = lever * across;
     const double rolling = (rolling_map * spin).norm();
-    const double rolling_coefficient = rolling_resistance * touch.friction * touch.load / std::max(slip_speed, rolling);
+    const double rolling_coefficient = rolling_resistance * touch.rolling_friction * touch.load / std::max(slip_speed, rolling);
     if (rolling_coefficient > 0.0) {
       friction.bottomRightCorner<3, 3>().noalias() += rolling_coefficient * rolling_map.transpose() * rolling_map;
       sliding = true;

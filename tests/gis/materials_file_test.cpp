@@ -31,6 +31,7 @@ void expect_same(const MaterialsTable& actual, const MaterialsTable& expected) {
     EXPECT_EQ(a.plastic_slope, e.plastic_slope);
     EXPECT_EQ(a.unloading_slope, e.unloading_slope);
     EXPECT_EQ(a.friction, e.friction);
+    EXPECT_EQ(a.rolling_friction, e.rolling_friction);
     EXPECT_EQ(a.restitution_normal, e.restitution_normal);
     EXPECT_EQ(a.restitution_tangential, e.restitution_tangential);
     EXPECT_EQ(a.noise_amplitude, e.noise_amplitude);
@@ -59,8 +60,8 @@ TEST(MaterialsFile, BuiltinTableReadsBackIdentically) {
 TEST(MaterialsFile, AwkwardNumbersAndNamesReadBackIdentically) {
   MaterialsTable table;
   table.lithology = {{-3, "quote \" backslash \\ tab \t newline \n end", 2.0 / 3.0, 0.1 + 0.2, 1e-300,
-                      1.7976931348623157e308, 0.0, 1.0, 5e-324, 123456789.125},
-                     {2147483647, "Gneiß, éboulis", 3e8, 2e6, 2.9e8, 3.1e8, 0.7, 0.25, 0.5, 0.1}};
+                      1.7976931348623157e308, 0.0, 0.1 + 0.7, 1.0, 5e-324, 123456789.125},
+                     {2147483647, "Gneiß, éboulis", 3e8, 2e6, 2.9e8, 3.1e8, 0.7, 0.45, 0.25, 0.5, 0.1}};
   table.vegetation = {{-2147483647 - 1, "", 0.0}, {7, "aulnaie", 0.012345678901234567}};
   table.default_lithology = 2147483647;
   table.default_vegetation = 7;
@@ -92,7 +93,8 @@ elastic_slope = 1.0e8
 yield_pressure = 8.0e5
 plastic_slope = 7.0e7
 unloading_slope = 1.9e8
-friction = 0.4
+friction = 0.78
+rolling_friction = 0.4
 restitution_normal = 0.38
 restitution_tangential = 0.65
 noise_amplitude = 0.3
@@ -104,7 +106,8 @@ elastic_slope = 5.0e9
 yield_pressure = 2.0e7
 plastic_slope = 3.5e9
 unloading_slope = 6.0e9
-friction = 0.3
+friction = 0.58
+rolling_friction = 0.3
 restitution_normal = 0.53
 restitution_tangential = 0.75
 noise_amplitude = 0.2
@@ -131,7 +134,7 @@ TEST(MaterialsFile, SmallValidFileReads) {
 
 TEST(MaterialsFile, IntegersAreAcceptedWhereNumbersAreExpected) {
   std::string text = valid_file;
-  text.replace(text.find("friction = 0.4"), 14, "friction = 1");
+  text.replace(text.find("friction = 0.78"), 15, "friction = 1");
   EXPECT_EQ(read_materials(write_file("materials_integer_number", text)).find_lithology(4)->friction, 1.0);
 }
 
@@ -173,7 +176,7 @@ TEST_P(MaterialsFileError, ThrowsOneLineNamingFileAndProblem) {
 INSTANTIATE_TEST_SUITE_P(
     BadInputs, MaterialsFileError,
     ::testing::Values(
-        BadInput{"syntax", "name = \"bedrock\"", "name = \"bedrock", {"TOML syntax error at line 18"}},
+        BadInput{"syntax", "name = \"bedrock\"", "name = \"bedrock", {"TOML syntax error at line 19"}},
         BadInput{"missing_field", "yield_pressure = 2.0e7\n", "",
                  {"missing field 'yield_pressure'", "lithology class 6"}},
         BadInput{"missing_code", "code = 6\n", "", {"missing field 'code'", "lithology entry 2"}},
@@ -184,7 +187,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"no_vegetation", "[[vegetation]]\ncode = 0\nname = \"bare\"\ndeperdition = 0.0\n\n"
                                   "[[vegetation]]\ncode = 3\nname = \"open forest\"\ndeperdition = 0.007\n",
                  "", {"no [[vegetation]] classes"}},
-        BadInput{"number_type", "friction = 0.4", "friction = \"high\"",
+        BadInput{"number_type", "friction = 0.78", "friction = \"high\"",
                  {"'friction' in lithology class 4 must be a number (found: string)", "line 11"}},
         BadInput{"code_type", "code = 6", "code = 6.0", {"'code' in lithology entry 2 must be an integer"}},
         BadInput{"name_type", "name = \"bare\"", "name = 0", {"'name' in vegetation class 0 must be a string"}},
@@ -202,7 +205,9 @@ INSTANTIATE_TEST_SUITE_P(
                  {"lithology class 4", "0 < plastic_slope"}},
         BadInput{"yield", "yield_pressure = 8.0e5", "yield_pressure = 0",
                  {"lithology class 4", "yield_pressure must be > 0"}},
-        BadInput{"friction", "friction = 0.3", "friction = -0.3", {"lithology class 6", "friction must be >= 0"}},
+        BadInput{"friction", "friction = 0.58", "friction = -0.3", {"lithology class 6", "friction must be >= 0"}},
+        BadInput{"rolling_friction", "rolling_friction = 0.3", "rolling_friction = -0.1",
+                 {"lithology class 6", "rolling_friction must be >= 0"}},
         BadInput{"restitution_normal", "restitution_normal = 0.38", "restitution_normal = 1.2",
                  {"lithology class 4", "restitution_normal must be within [0, 1]"}},
         BadInput{"restitution_tangential", "restitution_tangential = 0.75", "restitution_tangential = -0.1",
@@ -217,8 +222,8 @@ INSTANTIATE_TEST_SUITE_P(
                  {"default_lithology = 5 is not one of the [[lithology]] classes"}},
         BadInput{"default_vegetation_absent", "default_vegetation = 0", "default_vegetation = 4",
                  {"default_vegetation = 4 is not one of the [[vegetation]] classes"}},
-        BadInput{"unknown_class_key", "friction = 0.3", "frction = 0.3",
-                 {"unknown key 'frction'", "lithology entry 2", "line 23"}},
+        BadInput{"unknown_class_key", "friction = 0.58", "frction = 0.58",
+                 {"unknown key 'frction'", "lithology entry 2", "line 24"}},
         BadInput{"unknown_top_key", "default_vegetation = 0", "default_vegetation = 0\ndefault_lithologie = 4",
                  {"unknown key 'default_lithologie' at the top level"}}),
     [](const ::testing::TestParamInfo<BadInput>& param_info) { return param_info.param.name; });

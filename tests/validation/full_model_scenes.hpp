@@ -16,7 +16,8 @@
 
 namespace talus::full_model_scenes {
 
-// The built-in "talus" class (docs/materials.md): k1 1e8, Y 8e5, k2 7e7, k3 1.9e8 Pa/m, mu 0.4.
+// The built-in "talus" class's stress cycle (docs/materials.md): k1 1e8, Y 8e5, k2 7e7, k3 1.9e8
+// Pa/m, with sliding and rolling friction `friction` (-).
 inline GroundMaterial talus_soil(double friction = 0.4, double deperdition = 0.0) {
   GroundMaterial material;
   material.elastic_slope = 1.0e8;
@@ -24,6 +25,7 @@ inline GroundMaterial talus_soil(double friction = 0.4, double deperdition = 0.0
   material.plastic_slope = 7.0e7;
   material.unloading_slope = 1.9e8;
   material.friction = friction;
+  material.rolling_friction = friction;
   material.vegetation_deperdition = deperdition;
   return material;
 }
@@ -36,6 +38,7 @@ inline GroundMaterial elastic_soil(double stiffness, double friction) {
   material.plastic_slope = stiffness;
   material.unloading_slope = stiffness;
   material.friction = friction;
+  material.rolling_friction = friction;
   return material;
 }
 

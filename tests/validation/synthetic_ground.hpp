@@ -24,13 +24,15 @@ inline GridSpec local_spec(int width, int height, double cell) {
   return spec;
 }
 
-// Fast-mode material: normal and tangential restitution, friction, vegetation, noise amplitude.
+// Fast-mode material: normal and tangential restitution, friction (sliding and rolling alike),
+// vegetation, noise amplitude.
 inline GroundMaterial fast_material(double restitution_normal, double restitution_tangential, double friction,
                                     double deperdition = 0.0, double noise_amplitude = 0.0) {
   GroundMaterial material;
   material.restitution_normal = restitution_normal;
   material.restitution_tangential = restitution_tangential;
   material.friction = friction;
+  material.rolling_friction = friction;
   material.vegetation_deperdition = deperdition;
   material.noise_amplitude = noise_amplitude;
   return material;

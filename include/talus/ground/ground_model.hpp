@@ -22,6 +22,7 @@ struct GroundMaterial {
   double plastic_slope = 0;          // Pa/m
   double unloading_slope = 0;        // Pa/m
   double friction = 0;               // -
+  double rolling_friction = 0;       // -
   double restitution_normal = 0;     // -
   double restitution_tangential = 0; // -
   double noise_amplitude = 0;        // m
@@ -130,15 +131,15 @@ class GroundModel {
 
  private:
   // Every field of GroundMaterial; bit k of a square's flags stands for kFields[k].
-  static constexpr std::array<double GroundMaterial::*, 9> kFields{
+  static constexpr std::array<double GroundMaterial::*, 10> kFields{
       &GroundMaterial::elastic_slope,      &GroundMaterial::yield_pressure,
       &GroundMaterial::plastic_slope,      &GroundMaterial::unloading_slope,
-      &GroundMaterial::friction,           &GroundMaterial::restitution_normal,
-      &GroundMaterial::restitution_tangential, &GroundMaterial::noise_amplitude,
-      &GroundMaterial::vegetation_deperdition};
+      &GroundMaterial::friction,           &GroundMaterial::rolling_friction,
+      &GroundMaterial::restitution_normal, &GroundMaterial::restitution_tangential,
+      &GroundMaterial::noise_amplitude,    &GroundMaterial::vegetation_deperdition};
   static_assert(sizeof(GroundMaterial) == kFields.size() * sizeof(double),
                 "a GroundMaterial field is missing from kFields");
-  static constexpr std::size_t kNoiseAmplitudeField = 7;
+  static constexpr std::size_t kNoiseAmplitudeField = 8;
   static_assert(kFields[kNoiseAmplitudeField] == &GroundMaterial::noise_amplitude);
   static constexpr unsigned field_bit(std::size_t k) { return 1u << k; }
   static constexpr unsigned kMaterialFieldBits = (1u << kFields.size()) - 1u;

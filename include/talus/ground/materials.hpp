@@ -8,7 +8,8 @@
 
 namespace talus {
 
-// One lithology class: the stress cycle of paper fig. 2 plus the fast-mode coefficients.
+// One lithology class: the stress cycle of paper fig. 2, the sliding and rolling friction, plus the
+// fast-mode coefficients.
 // Pressures act on a piston's cross-section; compressions are along the piston axis.
 struct LithologyClass {
   int code = 0;                         // value in the lithology raster
@@ -17,7 +18,8 @@ struct LithologyClass {
   double yield_pressure = 0;            // pressure where plastic deformation starts (Pa)
   double plastic_slope = 0;             // k2 < k1: plastic loading slope (Pa/m)
   double unloading_slope = 0;           // k3 > k1: unloading and reloading slope (Pa/m)
-  double friction = 0;                  // Coulomb friction coefficient mu = tan(angle) (-)
+  double friction = 0;                  // sliding (Coulomb) friction coefficient mu = tan(angle) (-)
+  double rolling_friction = 0;          // rolling friction coefficient mu_r (Azzoni et al. 1995) (-)
   double restitution_normal = 0;        // fast mode: normal velocity kept at an impact (-)
   double restitution_tangential = 0;    // fast mode: tangential velocity kept at an impact (-)
   double noise_amplitude = 0;           // Perlin roughness amplitude of paper 3.4 (m)

@@ -1,12 +1,11 @@
 // Fast bounce mode (paper 3.3, "Fast Bounce mode"): flight under gravity and air drag, one
 // contact point at the bottom of the rock's bounding box, an impulse that reflects the
 // velocity about the ground normal with normal and tangential restitution, vegetation energy
-// deperdition, and a rolling/sliding phase with Coulomb friction so that rocks come to rest.
-// Equations, choices and every parameter: docs/rockfall-fast.md. Samples: at release, before
-// and after every impact (same time and place), at every take-off, at least every
-// sample_spacing metres, and the final state, which on_stop receives too. Energies count the
-// translation only (1/2 m v^2): fast mode's spin is the rolling value n x v_t / r, kept for a
-// complete state (it turns the box and the ellipsoid) but not part of the dynamics.
+// deperdition, and a rolling phase with rolling resistance (Azzoni et al. 1995) so that rocks
+// come to rest. Equations, choices and every parameter: docs/rockfall-fast.md. Samples: at
+// release, before and after every impact (same time and place), at every take-off, at least
+// every sample_spacing metres, and the final state, which on_stop receives too. Energies count
+// translation and rotation: the spin is the rolling value n x v_t / r of the last contact.
 #pragma once
 
 #include "talus/rockfall/trajectory_model.hpp"

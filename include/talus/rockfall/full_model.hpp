@@ -29,9 +29,8 @@ struct FullModelParameters {
                                       // rule below)
   double sample_spacing = 2.5;        // m: longest path between two reported samples
   double friction_slip_speed = 0.01;  // m/s: Coulomb friction is regularised below this slip speed
-  double rolling_resistance = 1.0;    // rolling friction coefficient as a multiple of the lithology's
-                                      // friction (-): 1 = the table's friction is also the rolling
-                                      // friction, as in fast mode; 0 = pure rolling (no resistance)
+  double rolling_resistance = 1.0;    // multiplier of the lithology's rolling friction (-): 1 = the
+                                      // table's rolling friction, as in fast mode; 0 = pure rolling
   bool guard = true;                  // detect blow-up and retry with smaller steps
   int max_retries = 8;                // halvings of a step before the run fails (exit code 3)
   // Added by the implementation (docs/rockfall-full.md, section 8):

@@ -5,8 +5,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
+#include "talus/core/errors.hpp"
 #include "talus/core/progress.hpp"
 #include "talus/core/release.hpp"
 #include "talus/ground/ground_model.hpp"
@@ -27,6 +30,8 @@ struct StochasticParameters {
   double friction_variation = 0.1;      // - : friction scaled by U(1 - v, 1 + v)
   double noise_frequency = 1.0;         // - : Perlin base frequency lambda = this / rock diameter
   int noise_octaves = 3;                // Perlin octaves
+  double noise_reference_size = 1.0;    // m : rocks at least this large see the table's noise amplitudes;
+                                        //     a smaller rock of size D sees them scaled by D / this
 };
 
 struct RockfallSettings {
@@ -36,6 +41,20 @@ struct RockfallSettings {
   std::uint64_t seed = 1;
   int threads = 0;                      // 0: OpenMP's default
   std::size_t saved_trajectories = 500; // at most this many lines kept for trajectories.gpkg
+  // Only the runs of this source, and only this run of each source (0-based, as the lines'
+  // source_id and run_id): one trajectory drawn exactly as in the whole run, to reproduce it.
+  std::optional<std::uint64_t> only_source, only_run;
+};
+
+// A trajectory that failed numerically (NumericalFailure), with the source and run (0-based)
+// that reproduce it through RockfallSettings::only_source and only_run.
+class TrajectoryFailure : public NumericalFailure {
+ public:
+  TrajectoryFailure(const std::string& what, std::uint64_t failed_source, std::uint64_t failed_run)
+      : NumericalFailure(what + " (source " + std::to_string(failed_source) + ", run " + std::to_string(failed_run) + ")"),
+        source(failed_source),
+        run(failed_run) {}
+  std::uint64_t source, run;
 };
 
 // A rock that breaks (paper fig. 4, full mode) reports several fragments (trajectory_observer.hpp):
@@ -44,7 +63,7 @@ struct RockfallResult {
   RockfallStatistics statistics;
   std::vector<TrajectoryLine> lines;            // sorted by (source, run)
   std::vector<std::uint64_t> stop_counts;       // by StopReason, one per fragment (a rock that never broke is one)
-  std::vector<double> runouts;                  // m, horizontal path length of every run, by (source, run)
+  std::vector<double> runouts;                  // m, horizontal path length of every run simulated, in (source, run) order
   std::uint64_t trajectories = 0;
   int threads = 1;
   std::uint64_t fragments = 0;                  // extra rocks born from fractures, over all runs
@@ -57,6 +76,9 @@ struct ReleaseSource {
 };
 std::vector<ReleaseSource> release_sources(const ReleaseSet& release);
 
+// Every run of every source (or those only_source and only_run select). A run that fails
+// numerically ends them all: the earliest failing run in (source, run) order is thrown as a
+// TrajectoryFailure once every thread has stopped, and nothing is returned.
 RockfallResult run_rockfall(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
                             const TrajectoryModel& model, const RockfallSettings& settings, Progress* progress);
 

@@ -29,6 +29,7 @@ struct Piston {
   double area = 0;                                       // m2: cross-section s^2 / axis.z
   StressCycle cycle;                                     // from the interpolated material
   double friction = 0;                                   // Coulomb mu (-), with the trajectory's variation
+  double rolling_friction = 0;                           // rolling mu_r (-), with the trajectory's variation
   double vegetation_deperdition = 0;                     // c (1/m)
   PistonState state;
   // Top of the piston (m): rest_top moved down its axis by the compression.

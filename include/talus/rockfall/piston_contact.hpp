@@ -26,6 +26,7 @@ struct PistonTouch {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // unit normal of the deformed ground, into the rock
   double load = 0;                                     // N: magnitude of the normal force
   double friction = 0;                                 // Coulomb mu (-)
+  double rolling_friction = 0;                         // rolling mu_r (-)
   double vegetation_deperdition = 0;                   // c (1/m)
 };
 
@@ -103,7 +104,7 @@ double active_slope(const StressCycle& cycle, const PistonState& state);
 // l = |arm . normal| the centre's height above the contact plane, c_r = rolling mu N /
 // max(slip_speed, l |w_t*|): a rolling rock meets a resisting torque rolling mu N l, which for a
 // sphere gives the deceleration A g (rolling mu cos t - sin t), A = m r^2 / (I + m r^2), of
-// REFERENCES.md; rolling_resistance scales the touch's friction coefficient into rolling mu.
+// REFERENCES.md; rolling_resistance scales the touch's rolling friction coefficient.
 // Returns the impulse to add to the momenta. With `touch_forces`, also each touch's Coulomb
 // friction force -c s (N, world, at its contact point; constant over the kick, so their sum is
 // the linear impulse over `duration`), in the touches' order; rolling resistance is a torque

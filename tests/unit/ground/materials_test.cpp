@@ -82,7 +82,7 @@ TEST(BuiltinMaterials, DefaultsAreTalusAndBareGround) {
 
 TEST(MaterialsTable, FindReturnsTheClassWithThatCodeOrNull) {
   MaterialsTable table;
-  table.lithology = {{12, "clay", 1, 1, 1, 1, 0, 0, 0, 0}, {3, "sand", 2, 2, 2, 2, 0, 0, 0, 0}};
+  table.lithology = {{12, "clay", 1, 1, 1, 1, 0, 0, 0, 0, 0}, {3, "sand", 2, 2, 2, 2, 0, 0, 0, 0, 0}};
   table.vegetation = {{5, "reeds", 0.5}};
   ASSERT_NE(table.find_lithology(3), nullptr);
   EXPECT_EQ(table.find_lithology(3)->name, "sand");

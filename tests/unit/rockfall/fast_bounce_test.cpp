@@ -92,8 +92,10 @@ TEST(FastBounce, ReportsReleaseSamplesEverySpacingAndTheStop) {
   EXPECT_EQ(recorder.stops, 1);
   EXPECT_EQ(recorder.final_sample.time, recorder.samples.back().time);
   EXPECT_EQ(recorder.final_sample.position, recorder.samples.back().position);
-  const TrajectorySample& s = recorder.samples[recorder.samples.size() / 2];
-  EXPECT_NEAR(s.kinetic_energy, 0.5 * sphere().mass() * s.velocity.squaredNorm(), 1e-9 * s.kinetic_energy + 1e-12);
+  // Energies count translation and rotation: at least the translation's.
+  for (const TrajectorySample& s : recorder.samples) {
+    EXPECT_GE(s.kinetic_energy, 0.5 * sphere().mass() * s.velocity.squaredNorm() * (1.0 - 1e-12));
+  }
 }
 
 // No drag, no vegetation: the release's kinetic and potential energy ends up in the reported

@@ -234,6 +234,7 @@ PistonTouch touch_at(const Eigen::Vector3d& arm, double load, double friction, d
   touch.normal = Eigen::Vector3d::UnitZ();
   touch.load = load;
   touch.friction = friction;
+  touch.rolling_friction = friction;
   touch.vegetation_deperdition = deperdition;
   return touch;
 }
