@@ -1,9 +1,11 @@
-// Reading release rasters and release vector layers (DESIGN.md section 3, --release).
+// Reading release rasters and release vector layers (DESIGN.md section 3, --release), with
+// the rock-fall attributes of their features (issue 16).
 #include "talus/gis/release_reader.hpp"
 
 #include <gdal_alg.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -12,6 +14,7 @@
 #include "talus/gis/dem_reader.hpp"
 #include "talus/gis/gdal_dataset.hpp"
 #include "talus/gis/raster_alignment.hpp"
+#include "talus/gis/release_attributes.hpp"
 
 namespace talus::gis {
 namespace {
@@ -19,6 +22,7 @@ namespace {
 struct ReleasePolygon {
   std::unique_ptr<OGRGeometry> geometry;  // in the DEM's CRS
   double depth;                           // m, > 0
+  ReleaseConditions conditions;           // rock fall: what the polygon's attributes give
 };
 
 // Keeps release cells on valid DEM cells; returns how many fell outside.
@@ -61,24 +65,27 @@ std::unique_ptr<OGRCoordinateTransformation> transform_to_dem(OGRLayer& layer, c
   return std::unique_ptr<OGRCoordinateTransformation>(OGRCreateCoordinateTransformation(&source, &target));
 }
 
-// Splits a geometry into release points and polygons; lines are refused.
-void collect(const OGRGeometry& geometry, double depth, std::vector<ReleasePoint>& points,
-             std::vector<ReleasePolygon>& polygons, const std::string& name) {
+// Splits a geometry into release points and polygons, each with the feature's depth and
+// conditions; lines are refused.
+void collect(const OGRGeometry& geometry, double depth, const ReleaseConditions& conditions,
+             std::vector<ReleasePoint>& points, std::vector<ReleasePolygon>& polygons, const std::string& name) {
   switch (wkbFlatten(geometry.getGeometryType())) {
     case wkbPoint: {
       const auto& p = *geometry.toPoint();
-      points.push_back({p.getX(), p.getY(), depth});
+      points.push_back({p.getX(), p.getY(), depth, conditions});
       break;
     }
     case wkbPolygon:
     case wkbCurvePolygon:
-      polygons.push_back({std::unique_ptr<OGRGeometry>(geometry.clone()), depth > 0 ? depth : 1.0});
+      polygons.push_back({std::unique_ptr<OGRGeometry>(geometry.clone()), depth > 0 ? depth : 1.0, conditions});
       break;
     case wkbMultiPoint:
     case wkbMultiPolygon:
     case wkbGeometryCollection:
     case wkbMultiSurface:
-      for (const OGRGeometry* part : *geometry.toGeometryCollection()) collect(*part, depth, points, polygons, name);
+      for (const OGRGeometry* part : *geometry.toGeometryCollection()) {
+        collect(*part, depth, conditions, points, polygons, name);
+      }
       break;
     default:
       throw InputError(name + ": has " + std::string(OGRGeometryTypeToName(geometry.getGeometryType())) +
@@ -86,12 +93,12 @@ void collect(const OGRGeometry& geometry, double depth, std::vector<ReleasePoint
   }
 }
 
-// Burns polygons onto the DEM grid with their depth; a polygon smaller than a cell still
-// marks the cell under its centroid.
-void rasterize(const std::vector<ReleasePolygon>& polygons, Grid<float>& depth, const std::string& name) {
-  const GridSpec& spec = depth.spec();
+// Burns each polygon's 1-based index onto the DEM grid (0: no polygon; the last one wins where
+// they overlap); a polygon smaller than a cell still marks the cell under its centroid.
+Grid<int> rasterize(const std::vector<ReleasePolygon>& polygons, const GridSpec& spec, const std::string& name) {
+  Grid<int> polygon_of_cell(spec, 0);
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-  GDALDatasetUniquePtr raster(mem->Create("", spec.width, spec.height, 1, GDT_Float32, nullptr));
+  GDALDatasetUniquePtr raster(mem->Create("", spec.width, spec.height, 1, GDT_Int32, nullptr));
   double gt[6];
   std::copy(spec.geotransform.begin(), spec.geotransform.end(), gt);
   raster->SetGeoTransform(gt);
@@ -99,7 +106,7 @@ void rasterize(const std::vector<ReleasePolygon>& polygons, Grid<float>& depth, 
   std::vector<double> burn;
   for (const auto& polygon : polygons) {
     geometries.push_back(OGRGeometry::ToHandle(polygon.geometry.get()));
-    burn.push_back(polygon.depth);
+    burn.push_back(static_cast<double>(burn.size() + 1));
   }
   int band = 1;
   CPLErrorReset();
@@ -107,29 +114,63 @@ void rasterize(const std::vector<ReleasePolygon>& polygons, Grid<float>& depth, 
                               geometries.data(), nullptr, nullptr, burn.data(), nullptr, nullptr, nullptr) != CE_None) {
     throw InputError(name + ": rasterizing its polygons failed: " + last_gdal_error("GDAL error"));
   }
-  if (raster->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, spec.width, spec.height, depth.values().data(), spec.width,
-                                         spec.height, GDT_Float32, 0, 0) != CE_None) {
+  if (raster->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, spec.width, spec.height, polygon_of_cell.values().data(),
+                                         spec.width, spec.height, GDT_Int32, 0, 0) != CE_None) {
     throw InputError(name + ": reading its rasterized polygons failed");
   }
-  for (const auto& polygon : polygons) {
+  for (std::size_t k = 0; k < polygons.size(); ++k) {
     OGRPoint centroid;
-    if (polygon.geometry->Centroid(&centroid) != OGRERR_NONE) continue;
+    if (polygons[k].geometry->Centroid(&centroid) != OGRERR_NONE) continue;
     const int col = static_cast<int>(std::floor((centroid.getX() - gt[0]) / gt[1]));
     const int row = static_cast<int>(std::floor((centroid.getY() - gt[3]) / gt[5]));
-    if (spec.contains_cell(col, row) && depth.at(col, row) <= 0.0f) depth.at(col, row) = static_cast<float>(polygon.depth);
+    if (spec.contains_cell(col, row) && polygon_of_cell.at(col, row) == 0) {
+      polygon_of_cell.at(col, row) = static_cast<int>(k + 1);
+    }
   }
+  return polygon_of_cell;
+}
+
+// How a message names a feature: its 1-based place in its layer, its FID when the format has
+// one, and its layer (empty: the file's only one).
+std::string feature_name(const std::string& name, const OGRFeature& feature, std::size_t place,
+                         const std::string& layer) {
+  std::string text = name + ": feature " + std::to_string(place);
+  if (feature.GetFID() != OGRNullFID) text += " (FID " + std::to_string(feature.GetFID()) + ")";
+  if (!layer.empty()) text += " of layer '" + layer + "'";
+  return text;
+}
+
+// The release cells of the polygons, with their depth and, when a polygon carries any, the
+// conditions of the polygon covering each cell.
+void burn_polygons(const std::vector<ReleasePolygon>& polygons, const Grid<double>& dem, ReleaseSet& release,
+                   const std::string& name) {
+  Grid<int> polygon_of_cell = rasterize(polygons, release.depth.spec(), name);
+  for (std::size_t i = 0; i < polygon_of_cell.size(); ++i) {
+    if (polygon_of_cell[i] > 0) release.depth[i] = static_cast<float>(polygons[polygon_of_cell[i] - 1].depth);
+  }
+  drop_cells_outside(release.depth, dem);
+  if (release.cell_count() == 0) throw InputError(name + ": its polygons lie outside the DEM's valid area");
+  const bool any_conditions =
+      std::any_of(polygons.begin(), polygons.end(), [](const ReleasePolygon& p) { return !p.conditions.empty(); });
+  if (!any_conditions) return;
+  for (const auto& polygon : polygons) release.polygon_conditions.push_back(polygon.conditions);
+  release.polygon_of_cell = std::move(polygon_of_cell);
 }
 
 ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path& path, const Grid<double>& dem,
-                               const CrsOption& crs) {
+                               const CrsOption& crs, const std::optional<Rock>& run_rock) {
   const std::string name = describe_input(path, "release");
   std::vector<ReleasePoint> points;
   std::vector<ReleasePolygon> polygons;
   std::size_t features = 0;
+  const bool several_layers = dataset.GetLayerCount() > 1;
   for (OGRLayer* layer : dataset.GetLayers()) {
     const auto transform = transform_to_dem(*layer, dem.spec(), crs);
     const int depth_field = layer->GetLayerDefn()->GetFieldIndex("depth");
+    const std::string layer_name = several_layers ? std::string(layer->GetName()) : std::string();
+    std::size_t place = 0;
     for (auto& feature : *layer) {
+      ++place;
       const OGRGeometry* original = feature->GetGeometryRef();
       if (original == nullptr || original->IsEmpty()) continue;
       ++features;
@@ -138,7 +179,10 @@ ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path
         throw InputError(name + ": a geometry cannot be transformed to the DEM's CRS");
       }
       const double depth = depth_field >= 0 ? std::abs(feature->GetFieldAsDouble(depth_field)) : 0.0;
-      collect(*geometry, depth, points, polygons, name);
+      const ReleaseConditions conditions =
+          run_rock ? read_release_conditions(*feature, *run_rock, feature_name(name, *feature, place, layer_name))
+                   : ReleaseConditions{};
+      collect(*geometry, depth, conditions, points, polygons, name);
     }
   }
   if (features == 0) throw InputError(name + ": has no features: empty release");
@@ -147,11 +191,7 @@ ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path
   GridSpec spec = dem.spec();
   spec.nodata = 0.0;
   release.depth = Grid<float>(spec, 0.0f);
-  if (!polygons.empty()) {
-    rasterize(polygons, release.depth, name);
-    drop_cells_outside(release.depth, dem);
-    if (release.cell_count() == 0) throw InputError(name + ": its polygons lie outside the DEM's valid area");
-  }
+  if (!polygons.empty()) burn_polygons(polygons, dem, release, name);
   std::size_t index = 0;
   for (const auto& p : points) {
     ++index;
@@ -171,7 +211,8 @@ ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path
 
 }  // namespace
 
-ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs) {
+ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs,
+                        const std::optional<Rock>& run_rock) {
   ensure_gdal_ready();
   const std::string name = describe_input(path, "release");
   std::error_code ec;
@@ -179,7 +220,7 @@ ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& d
   CPLErrorReset();
   GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY));
   if (!dataset) throw InputError(name + ": not a raster or vector layer GDAL can read");
-  if (dataset->GetLayerCount() > 0) return release_from_vector(*dataset, path, dem, crs);
+  if (dataset->GetLayerCount() > 0) return release_from_vector(*dataset, path, dem, crs, run_rock);
   if (dataset->GetRasterCount() > 0) {
     dataset.reset();
     return release_from_raster(path, dem, crs);

@@ -224,7 +224,7 @@ Scene load_scene(const SceneInputs& inputs) {
   }
   load_vegetation(scene, crs);
   if (!inputs.release.empty()) {
-    scene.release = read_release(inputs.release, dem, crs);
+    scene.release = read_release(inputs.release, dem, crs, inputs.run_rock);
     if (inputs.release_needs_depth) require_release_depths(inputs.release);
   }
   if (!inputs.erodible.empty()) scene.erodible = load_erodible(scene, crs);

@@ -52,7 +52,9 @@ Eigen::Vector3d parse_size(const std::string& text) {
   if (values.size() == 1) values.assign(3, values[0]);
   if (values.size() != 3) throw InputError("--block-size " + text + ": give D or A,B,C in metres");
   for (double v : values) {
-    if (!(v > 0.01 && v < 100.0)) throw InputError("--block-size " + text + ": axes must lie between 0.01 and 100 m");
+    if (!(v > kMinRockAxis && v < kMaxRockAxis)) {
+      throw InputError("--block-size " + text + ": axes must lie between 0.01 and 100 m");
+    }
   }
   return {values[0], values[1], values[2]};
 }
@@ -208,7 +210,7 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   if (o.settings.rock.shape == BlockShape::sphere && o.settings.rock.axes.maxCoeff() != o.settings.rock.axes.minCoeff()) {
     throw InputError("--block-size " + o.block_size + ": a sphere has one diameter; use --block-shape ellipsoid or box");
   }
-  if (!(o.settings.rock.density >= 500.0 && o.settings.rock.density <= 6000.0)) {
+  if (!(o.settings.rock.density >= kMinRockDensity && o.settings.rock.density <= kMaxRockDensity)) {
     throw InputError("--density " + std::to_string(o.settings.rock.density) + ": expected 500-6000 kg/m3");
   }
   if (o.settings.runs_per_source == 0) throw InputError("--runs 0: at least one run per source");
@@ -241,6 +243,7 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   const auto start = std::chrono::steady_clock::now();
   gis::RunRecord record;
   record.set_command_line(o.command_line);
+  o.inputs.run_rock = o.settings.rock;
   const gis::Scene scene = gis::load_scene(o.inputs);
   const GroundModel ground = scene.ground_model();
   const std::vector<ReleaseSource> sources = release_sources(*scene.release);
@@ -279,7 +282,10 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   }
   record.set("seed", o.settings.seed);
   record.set("threads", result.threads);
+  const auto sources_with_attributes =
+      std::count_if(sources.begin(), sources.end(), [](const ReleaseSource& s) { return !s.conditions.empty(); });
   record.set("counts", {{"sources", sources.size()},
+                        {"sources_with_attributes", sources_with_attributes},
                         {"trajectories", result.trajectories},
                         {"stop_reasons", stops},
                         {"fragments", result.fragments},

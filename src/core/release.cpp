@@ -1,4 +1,4 @@
-// Release set sizes (DESIGN.md section 3).
+// Release set sizes (DESIGN.md section 3) and the conditions of release cells (issue 16).
 #include "talus/core/release.hpp"
 
 namespace talus {
@@ -15,6 +15,12 @@ double ReleaseSet::volume() const {
   double sum = 0;
   for (std::size_t i = 0; i < depth.size(); ++i) sum += depth[i] > 0.0f ? static_cast<double>(depth[i]) : 0.0;
   return sum * depth.spec().cell_area();
+}
+
+ReleaseConditions ReleaseSet::cell_conditions(int col, int row) const {
+  if (polygon_of_cell.size() == 0) return {};
+  const int polygon = polygon_of_cell.at(col, row);
+  return polygon > 0 ? polygon_conditions[static_cast<std::size_t>(polygon - 1)] : ReleaseConditions{};
 }
 
 }  // namespace talus

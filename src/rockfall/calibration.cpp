@@ -215,7 +215,7 @@ std::vector<ReleaseSource> calibration_sources(const CalibrationScene& scene) {
   std::vector<ReleaseSource> sources;
   for (int i = 0; i < scene.sources; ++i) {
     const double y = (i - 0.5 * (scene.sources - 1)) * scene.source_spacing;
-    sources.push_back({scene.cell_size, y, false});
+    sources.push_back({scene.cell_size, y, false, {}});
   }
   return sources;
 }

@@ -13,6 +13,7 @@
 #include "talus/core/counter_random.hpp"
 #include "talus/ground/perlin_noise.hpp"
 #include "talus/ground/perturbed_ground.hpp"
+#include "talus/rockfall/release_rock.hpp"
 
 namespace talus {
 namespace {
@@ -111,7 +112,7 @@ RunDraws draw_run(const GroundModel& ground, const ReleaseSource& source, const 
   const StochasticParameters& s = settings.stochastic;
   CounterRandom random(settings.seed, source_index, run);
   RunDraws draws;
-  draws.rock = settings.rock;
+  draws.rock = release_rock(settings.rock, source.conditions);
   draws.rock.axes *= vary(random, s.size_variation);
   draws.rock.density *= vary(random, s.density_variation);
   draws.variation.restitution_normal = vary(random, s.restitution_variation);
@@ -131,6 +132,7 @@ RunDraws draw_run(const GroundModel& ground, const ReleaseSource& source, const 
   }
   draws.start.orientation = random_orientation(random);
   draws.start.position = {x, y, 0.0};
+  draws.start.velocity = release_velocity(source.conditions);
   return draws;
 }
 
@@ -141,10 +143,12 @@ std::vector<ReleaseSource> release_sources(const ReleaseSet& release) {
   const GridSpec& spec = release.depth.spec();
   for (int row = 0; row < spec.height; ++row) {
     for (int col = 0; col < spec.width; ++col) {
-      if (release.depth.at(col, row) > 0.0f) sources.push_back({spec.node_x(col), spec.node_y(row), true});
+      if (release.depth.at(col, row) > 0.0f) {
+        sources.push_back({spec.node_x(col), spec.node_y(row), true, release.cell_conditions(col, row)});
+      }
     }
   }
-  for (const auto& p : release.points) sources.push_back({p.x, p.y, false});
+  for (const auto& p : release.points) sources.push_back({p.x, p.y, false, p.conditions});
   return sources;
 }
 
@@ -199,7 +203,8 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       const PerlinNoise noise(draws.noise);
       const PerturbedGround perturbed(ground, &noise, draws.variation);
       draws.start.position.z() = perturbed.height(draws.start.position.x(), draws.start.position.y()) +
-                                 draws.rock.half_height(draws.start.orientation) + settings.stochastic.release_height;
+                                 draws.rock.half_height(draws.start.orientation) +
+                                 sources[source_index].conditions.release_height.value_or(settings.stochastic.release_height);
       TrajectoryLine* line = nullptr;
       if (save_stride != 0 && n % save_stride == 0) {
         lines.push_back({source_index, run, StopReason::at_rest, 0, 0, {}});

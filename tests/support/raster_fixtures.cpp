@@ -3,6 +3,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <sstream>
 #include <stdexcept>
 
 namespace talus::test {
@@ -45,8 +46,24 @@ void write_raster(const std::filesystem::path& path, const RasterFixture& fixtur
   }
 }
 
+// A depth layer is an attribute layer with one real field, its values written exactly.
 void write_vector(const std::filesystem::path& path, const std::string& crs, const std::vector<VectorFeature>& features,
                   bool with_depth_field) {
+  std::vector<LayerField> fields;
+  if (with_depth_field) fields.push_back({"depth", false});
+  std::vector<LayerFeature> layer_features;
+  for (const auto& f : features) {
+    std::ostringstream depth;
+    depth.precision(17);
+    depth << f.depth;
+    layer_features.push_back({f.wkt, {}});
+    if (with_depth_field) layer_features.back().values.push_back(depth.str());
+  }
+  write_layer(path, crs, fields, layer_features);
+}
+
+void write_layer(const std::filesystem::path& path, const std::string& crs, const std::vector<LayerField>& fields,
+                 const std::vector<LayerFeature>& features) {
   GDALAllRegister();
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
   GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
@@ -55,16 +72,25 @@ void write_vector(const std::filesystem::path& path, const std::string& crs, con
   srs.SetFromUserInput(crs.c_str());
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   OGRLayer* layer = dataset->CreateLayer("release", &srs, wkbUnknown, nullptr);
-  if (with_depth_field) {
-    OGRFieldDefn depth("depth", OFTReal);
-    layer->CreateField(&depth);
+  for (const auto& field : fields) {
+    OGRFieldDefn definition(field.name.c_str(), field.text ? OFTString : OFTReal);
+    layer->CreateField(&definition);
   }
   for (const auto& f : features) {
     OGRFeature feature(layer->GetLayerDefn());
     OGRGeometry* geometry = nullptr;
     OGRGeometryFactory::createFromWkt(f.wkt.c_str(), &srs, &geometry);
     feature.SetGeometryDirectly(geometry);
-    if (with_depth_field) feature.SetField("depth", f.depth);
+    for (std::size_t i = 0; i < fields.size() && i < f.values.size(); ++i) {
+      const int index = static_cast<int>(i);
+      if (!f.values[i]) {
+        feature.SetFieldNull(index);
+      } else if (fields[i].text) {
+        feature.SetField(index, f.values[i]->c_str());
+      } else {
+        feature.SetField(index, std::stod(*f.values[i]));
+      }
+    }
     if (layer->CreateFeature(&feature) != OGRERR_NONE) throw std::runtime_error("cannot write a feature");
   }
 }

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,5 +33,22 @@ std::vector<float> read_band(const std::filesystem::path& path);
 // Writes a GeoPackage with one layer of the given features.
 void write_vector(const std::filesystem::path& path, const std::string& crs, const std::vector<VectorFeature>& features,
                   bool with_depth_field);
+
+// A field of an attribute layer: real numbers, or text.
+struct LayerField {
+  std::string name;
+  bool text = false;
+};
+
+// A feature of an attribute layer: its geometry (in the layer's CRS) and one value per field,
+// std::nullopt for NULL; a real field's value is its text read as a number ("inf" is infinity).
+struct LayerFeature {
+  std::string wkt;
+  std::vector<std::optional<std::string>> values;
+};
+
+// Writes a GeoPackage with one layer, "release", of the given fields and features.
+void write_layer(const std::filesystem::path& path, const std::string& crs, const std::vector<LayerField>& fields,
+                 const std::vector<LayerFeature>& features);
 
 }  // namespace talus::test

@@ -314,7 +314,7 @@ TEST(FullModelStepFloor, StepsStalledFarBelowTheContactsThrow) {
 // Paper 3.4 with fig. 4: weakly bonded blocks down a 17 degree talus slope, at 1 and 2 threads.
 TEST(FullModelFracture, MonteCarloCountsEveryFragmentAndFollowsTheFirst) {
   const GroundModel model = full_model_scenes::inclined_plane(30, 12, 5.0, 100.0, 0.3, full_model_scenes::talus_soil());
-  const std::vector<ReleaseSource> sources{{10.0, -20.0, false}, {10.0, -30.0, false}, {10.0, -40.0, false}};
+  const std::vector<ReleaseSource> sources{{10.0, -20.0, false, {}}, {10.0, -30.0, false, {}}, {10.0, -40.0, false, {}}};
   RockfallSettings settings;
   settings.rock = long_box();
   settings.runs_per_source = 2;

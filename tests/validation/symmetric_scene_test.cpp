@@ -34,7 +34,7 @@ TEST(SymmetricScene, GivesASymmetricReachProbabilityLayer) {
   const GroundModel ground = symmetric_valley();
   std::vector<ReleaseSource> sources;
   for (int k = 2; k <= 12; k += 2) {
-    for (int col : {30 - k, 30 + k}) sources.push_back({ground.spec().node_x(col), ground.spec().node_y(4), true});
+    for (int col : {30 - k, 30 + k}) sources.push_back({ground.spec().node_x(col), ground.spec().node_y(4), true, {}});
   }
   RockfallSettings settings;
   settings.runs_per_source = 300;

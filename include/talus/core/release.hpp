@@ -1,28 +1,35 @@
 // Where material is released (DESIGN.md section 3, --release): cells from a raster or
-// polygons, and points. Rock fall starts one source per cell or point; mud flow releases the
-// cells' depth.
+// polygons, and points. Rock fall starts one source per cell or point, with the conditions its
+// feature gives (release_conditions.hpp); mud flow releases the cells' depth.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
 #include "talus/core/grid.hpp"
+#include "talus/core/release_conditions.hpp"
 
 namespace talus {
 
 struct ReleasePoint {
-  double x = 0, y = 0;   // m, in the DEM's CRS
-  double depth = 0;      // m, from a `depth` attribute (0 when none)
+  double x = 0, y = 0;           // m, in the DEM's CRS
+  double depth = 0;              // m, from a `depth` attribute (0 when none)
+  ReleaseConditions conditions;  // rock fall: what the point's attributes give
 };
 
 struct ReleaseSet {
   Grid<float> depth;                 // m on the DEM grid: > 0 in release cells, 0 elsewhere
   std::vector<ReleasePoint> points;  // point sources
+  // Rock fall, when a release polygon carries attributes: the conditions of each polygon, and
+  // per cell the 1-based index of the polygon that covers it (0: none). Both empty otherwise.
+  std::vector<ReleaseConditions> polygon_conditions;
+  Grid<int> polygon_of_cell;
 
   std::size_t cell_count() const;    // cells with depth > 0
   double area() const;               // m2 covered by release cells
   double volume() const;             // m3: sum of depth x cell area
   std::size_t source_count() const { return cell_count() + points.size(); }
+  ReleaseConditions cell_conditions(int col, int row) const;  // those of the cell's polygon (empty: none)
 };
 
 }  // namespace talus

@@ -69,10 +69,13 @@ struct RockfallResult {
   std::uint64_t fragments = 0;                  // extra rocks born from fractures, over all runs
 };
 
-// One release location: a cell centre (jittered inside its cell) or a point.
+// One release location: a cell centre (jittered inside its cell) or a point, with the
+// conditions its release feature gives (empty: the run's rock, at rest, the run's
+// release_height).
 struct ReleaseSource {
-  double x = 0, y = 0;   // m
+  double x = 0, y = 0;           // m
   bool is_cell = true;
+  ReleaseConditions conditions;
 };
 std::vector<ReleaseSource> release_sources(const ReleaseSet& release);
 

@@ -8,12 +8,17 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace talus {
+#include "talus/core/block_shape.hpp"
 
-enum class BlockShape { sphere, ellipsoid, box };
+namespace talus {
 
 // Exponent of the superellipsoid that stands for a box (8: 94% of the box's volume).
 inline constexpr double kBoxExponent = 8.0;
+
+// The rocks a run accepts, from its options or from a release feature: every axis strictly
+// between these (m), a density between these (kg/m3, inclusive).
+inline constexpr double kMinRockAxis = 0.01, kMaxRockAxis = 100.0;
+inline constexpr double kMinRockDensity = 500.0, kMaxRockDensity = 6000.0;
 
 struct Rock {
   BlockShape shape = BlockShape::sphere;

@@ -88,8 +88,8 @@ TEST(ReleaseParticles, APointReleasesOneCellAroundIt) {
   const GroundModel ground = hill(spec);
   ReleaseSet release;
   release.depth = Grid<float>(spec, 0.0f);
-  release.points.push_back({23.7, -31.2, 1.5});
-  release.points.push_back({10.0, -10.0, 0.0});  // no depth: nothing
+  release.points.push_back({23.7, -31.2, 1.5, {}});
+  release.points.push_back({10.0, -10.0, 0.0, {}});  // no depth: nothing
   ReleaseLayout layout;
   const ParticleSet particles = release_particles(ground, release, layout);
   ASSERT_EQ(particles.size(), 4u);

@@ -1,18 +1,24 @@
 // Reading --release (DESIGN.md section 3): a raster (non-zero cells are sources, the value is
 // a depth in metres and negative values count as depths too) or a vector layer through OGR
-// (points, or polygons rasterized onto the DEM grid, with an optional `depth` attribute),
-// reprojected to the DEM's CRS.
+// (points, or polygons rasterized onto the DEM grid, with an optional `depth` attribute and,
+// for rock fall, the rock-fall attributes of release_attributes.hpp), reprojected to the DEM's
+// CRS.
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 #include "talus/core/release.hpp"
 #include "talus/gis/crs_option.hpp"
+#include "talus/rockfall/rock.hpp"
 
 namespace talus::gis {
 
-// Throws InputError naming the file when it is unreadable, empty, of an unsupported geometry,
-// or lies outside the DEM's valid area.
-ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs);
+// With `run_rock` (rock fall: the run's rock), each feature's rock-fall attributes become its
+// release conditions; without it they are not read. Throws InputError naming the file when it
+// is unreadable, empty, of an unsupported geometry, lies outside the DEM's valid area, or when
+// a feature's attribute is out of range (naming the feature and the field).
+ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs,
+                        const std::optional<Rock>& run_rock = std::nullopt);
 
 }  // namespace talus::gis

@@ -11,6 +11,7 @@
 #include "talus/ground/ground_model.hpp"
 #include "talus/ground/materials.hpp"
 #include "talus/gis/dem_reader.hpp"
+#include "talus/rockfall/rock.hpp"
 
 namespace talus::gis {
 
@@ -25,6 +26,10 @@ struct SceneInputs {
   // Mud flow: every polygon or point of a vector release must carry a non-zero `depth` (m); a
   // layer without the attribute is refused instead of releasing the default 1 m.
   bool release_needs_depth = false;
+  // Rock fall: the run's rock; the release features' rock-fall attributes (shape, block_size,
+  // density or mass, vx, vy, vz, release_height) are read and checked against it. Empty: they
+  // are not read (mud flow, info).
+  std::optional<Rock> run_rock;
 };
 
 struct Scene {
