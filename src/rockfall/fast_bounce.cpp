@@ -365,8 +365,10 @@ class FastBounceRun {
 
   StopReason outside(const Eigen::Vector3d& at) const { return reason_for_leaving(ground_.model().spec(), at); }
 
-  // The rock as rolling sees it at orientation q, its contact point h below its centre.
+  // The rock as rolling sees it at orientation q, its contact point h below its centre. A
+  // sphere's inertia is the same in every frame.
   RollingBody rolling_body(const Eigen::Quaterniond& q, double h) const {
+    if (!oriented_) return {mass_, inertia_, h};
     const Eigen::Matrix3d rotation = q.toRotationMatrix();
     return {mass_, rotation * inertia_ * rotation.transpose(), h};
   }

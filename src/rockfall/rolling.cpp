@@ -36,12 +36,6 @@ double rolling_share(const RollingBody& body, const Eigen::Vector3d& normal, con
   return m_r2 / (m_r2 + inertia);
 }
 
-Eigen::Vector3d rolling_spin(const RollingBody& body, const Eigen::Vector3d& normal, const Eigen::Vector3d& velocity) {
-  return normal.cross(velocity) / body.radius;
-}
-
-double rotation_energy(const RollingBody& body, const Eigen::Vector3d& spin) { return 0.5 * spin.dot(body.inertia * spin); }
-
 // Angular momentum about the contact point along the rolling axis e, before and after:
 // m r v + I_e w_e = (m r + I_e / r) u, so u = A v + (1 - A) r w_e with A = m r^2 / (m r^2 + I_e).
 // The spin's other components are lost to friction. The speed is capped so that the rolling rock's

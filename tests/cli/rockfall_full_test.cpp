@@ -69,5 +69,24 @@ TEST_F(SampleFullMode, SameLayersAtOneAndTwoThreads) {
   }
 }
 
+// Issue 16: blocks of 0.2 m (and 0.1 m), which used to end the run with "the step collapsed below
+// its floor" (0.2 m) or "blow-up not recovered" (0.5 m) on the paper's noise at the table's
+// amplitudes, run on the whole sample scene (docs/ground-model.md, "Noise and rock size").
+TEST(SampleFullModeSmallBlocks, RunEveryTrajectory) {
+  const fs::path root = test::fresh_folder("rockfall_full_small");
+  for (const std::string size : {"0.2", "0.1"}) {
+    std::vector<std::string> arguments = full_mode_arguments(root / size, "2");
+    arguments.insert(arguments.end(), {"--block-size", size});
+    const test::ProgramResult result = test::run_talus(arguments, root);
+    ASSERT_EQ(result.exit_code, 0) << size << " m: " << result.err;
+    std::ifstream file(root / size / "run.json");
+    const nlohmann::json record = nlohmann::json::parse(file);
+    EXPECT_EQ(record["counts"]["trajectories"], 260) << size;
+    EXPECT_EQ(record["counts"]["stop_reasons"]["at_rest"].get<int>() + record["counts"]["stop_reasons"]["left_dem"].get<int>(),
+              260) << size;
+  }
+  fs::remove_all(root);
+}
+
 }  // namespace
 }  // namespace talus

@@ -28,11 +28,13 @@ struct RollingRun {
   double energy_ratio = 0;  // kinetic energy / translation's at the end
 };
 
-// A 1 m sphere released on a stiff elastic incline with mu = 1, rolling for 4 s; rolling
-// resistance as a multiple of mu (0: pure rolling).
-RollingRun roll(double rolling_resistance) {
-  const GroundModel model =
-      full_model_scenes::inclined_plane(60, 20, 5.0, 300.0, kGradient, full_model_scenes::elastic_soil(1.0e8, 1.0));
+// A 1 m sphere released on a stiff elastic incline with sliding friction mu = 1 and the lithology's
+// rolling friction mu_r, rolling for 4 s; rolling_resistance the model's multiplier of mu_r (0:
+// pure rolling).
+RollingRun roll(double rolling_friction, double rolling_resistance) {
+  GroundMaterial soil = full_model_scenes::elastic_soil(1.0e8, 1.0);
+  soil.rolling_friction = rolling_friction;
+  const GroundModel model = full_model_scenes::inclined_plane(60, 20, 5.0, 300.0, kGradient, soil);
   const PerturbedGround ground(model, nullptr);
   const Rock rock = full_model_scenes::sphere(1.0);
   FullModelParameters parameters;
@@ -71,7 +73,7 @@ RollingRun roll(double rolling_resistance) {
 }
 
 TEST(FullModelRolling, SphereRollsWithoutSlipDownAnInclineAtFiveSeventhsGSine) {
-  const RollingRun run = roll(0.0);
+  const RollingRun run = roll(1.0, 0.0);
   const double slope = std::atan(kGradient);
   const double expected = 5.0 / 7.0 * kG * std::sin(slope);
   const double error = std::abs(run.acceleration - expected) / expected;
@@ -85,9 +87,10 @@ TEST(FullModelRolling, SphereRollsWithoutSlipDownAnInclineAtFiveSeventhsGSine) {
 
 TEST(FullModelRolling, RollingResistanceFollowsAzzoni) {
   // REFERENCES.md (Azzoni): with a rolling friction coefficient mu_r the rolling sphere
-  // accelerates at A g (sin t - mu_r cos t), A = m r^2 / (I + m r^2) = 5/7. Here mu_r = 0.2 x mu
-  // = 0.2, and mu = 1 keeps the contact from slipping. Tolerance 2%, as for pure rolling.
-  const RollingRun run = roll(0.2);
+  // accelerates at A g (sin t - mu_r cos t), A = m r^2 / (I + m r^2) = 5/7. Here the lithology's
+  // rolling friction is 0.2, distinct from its sliding friction mu = 1, which keeps the contact
+  // from slipping. Tolerance 2%, as for pure rolling.
+  const RollingRun run = roll(0.2, 1.0);
   const double slope = std::atan(kGradient);
   const double expected = 5.0 / 7.0 * kG * (std::sin(slope) - 0.2 * std::cos(slope));
   const double error = std::abs(run.acceleration - expected) / expected;

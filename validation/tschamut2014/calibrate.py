@@ -19,7 +19,7 @@ import compare
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-GRID = [0.16, 0.20, 0.24, 0.26, 0.28, 0.30, 0.32, 0.36, 0.40]
+GRID = [0.14, 0.16, 0.18, 0.20, 0.22, 0.24, 0.28, 0.32, 0.40]
 
 
 def main():

@@ -7,7 +7,9 @@ Reads calibration_runs.csv (observed release and deposit points) and each folder
 trajectories.gpkg (every run's 3D line: its first vertex is the release, its last the stop) and
 prints, for observed and simulated (a rock that never left its release counts as 0 m): the median, 5th and 95th percentile of the horizontal runout
 (straight distance from release to stop, m, as observed_runout_m) and the median travel azimuth
-(degrees clockwise from north).
+(degrees clockwise from north); for each simulated folder also the median and 95th percentile of
+the runs' largest kinetic energy (kJ, translation and rotation, the lines' max_energy_kj) and,
+over the cells the rocks reached, of jump_height_p95 (m) and velocity_max (m/s).
 """
 import csv
 import math
@@ -15,7 +17,7 @@ import os
 import sys
 
 import numpy as np
-from osgeo import ogr
+from osgeo import gdal, ogr
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -56,12 +58,27 @@ def simulated(folder):
     return summary(runouts, azimuths)
 
 
+def energies_and_heights(folder):
+    data = ogr.Open(os.path.join(folder, "trajectories.gpkg"))
+    energies = [feature.GetField("max_energy_kj") for feature in data.GetLayer(0)]
+    passages = gdal.Open(os.path.join(folder, "passages.tif")).ReadAsArray() > 0
+    jump = gdal.Open(os.path.join(folder, "jump_height_p95.tif")).ReadAsArray()[passages]
+    speed = gdal.Open(os.path.join(folder, "velocity_max.tif")).ReadAsArray()[passages]
+    quantiles = lambda values: (float(np.median(values)), float(np.percentile(values, 95)))
+    return quantiles(energies), quantiles(jump), quantiles(speed)
+
+
 def main():
     rows = [("observed", observed())] + [(folder, simulated(folder)) for folder in sys.argv[1:]]
     print("%-40s %4s %9s %7s %7s %8s" % ("", "n", "median m", "p05 m", "p95 m", "azimuth"))
     for name, s in rows:
         print("%-40s %4d %9.1f %7.1f %7.1f %8.1f" % (name[-40:], s["n"], s["median_m"], s["p05_m"], s["p95_m"],
                                                      s["azimuth_deg"]))
+    print("\n%-40s %19s %21s %21s" % ("", "max energy kJ", "jump_height_p95 m", "velocity_max m/s"))
+    for folder in sys.argv[1:]:
+        e, j, v = energies_and_heights(folder)
+        print("%-40s median %4.1f p95 %4.1f  median %4.2f p95 %4.2f  median %4.1f p95 %4.1f" %
+              (folder[-40:], e[0], e[1], j[0], j[1], v[0], v[1]))
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace talus {
 
@@ -21,11 +22,17 @@ struct RollingBody {
 // inertia about an axis in the ground's plane is used.
 double rolling_share(const RollingBody& body, const Eigen::Vector3d& normal, const Eigen::Vector3d& direction);
 
-// The spin of rolling without slip at the centre's velocity v: normal x v / r (rad/s).
-Eigen::Vector3d rolling_spin(const RollingBody& body, const Eigen::Vector3d& normal, const Eigen::Vector3d& velocity);
+// The spin of rolling without slip at the centre's velocity v: normal x v / r (rad/s). Inline, as
+// rotation_energy: fast mode asks for both at every contact step and sample.
+inline Eigen::Vector3d rolling_spin(const RollingBody& body, const Eigen::Vector3d& normal,
+                                    const Eigen::Vector3d& velocity) {
+  return normal.cross(velocity) / body.radius;
+}
 
 // 1/2 w . I w (J).
-double rotation_energy(const RollingBody& body, const Eigen::Vector3d& spin);
+inline double rotation_energy(const RollingBody& body, const Eigen::Vector3d& spin) {
+  return 0.5 * spin.dot(body.inertia * spin);
+}
 
 // A rock that touches down with the tangential velocity `velocity` and the spin `spin` starts to
 // roll: friction at the contact point conserves the angular momentum about it along the rolling
