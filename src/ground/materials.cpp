@@ -28,9 +28,9 @@ MaterialsTable builtin_materials() {
   // drained friction angles of soils and basic friction angles of rock; rolling friction and
   // tangential restitution: the closest STONE class; normal restitution: Rockyfor3D midpoint.
   table.lithology = {
-      {0, "river or swamp", 1.0e7, 5.0e4, 1.0e6, 5.0e7, 0.36, 0.95, 0.0, 0.10, 0.0},
-      {1, "fine soil > 1 m", 1.5e7, 2.0e5, 7.0e6, 4.5e7, 0.53, 0.80, 0.23, 0.40, 0.05},
-      {2, "fine soil < 1 m, sand or gravel", 3.0e7, 3.0e5, 1.8e7, 8.0e7, 0.62, 0.65, 0.28, 0.55, 0.10},
+      {0, "river or swamp", 1.0e7, 5.0e4, 1.0e6, 5.0e7, 0.95, 0.95, 0.0, 0.10, 0.0},
+      {1, "fine soil > 1 m", 1.5e7, 2.0e5, 7.0e6, 4.5e7, 0.80, 0.80, 0.23, 0.40, 0.05},
+      {2, "fine soil < 1 m, sand or gravel", 3.0e7, 3.0e5, 1.8e7, 8.0e7, 0.65, 0.65, 0.28, 0.55, 0.10},
       {3, "scree, medium compact soil, forest road", 6.0e7, 5.0e5, 4.0e7, 1.3e8, 0.70, 0.35, 0.33, 0.55, 0.15},
       {4, "talus, compact soil with large fragments", 1.0e8, 8.0e5, 7.0e7, 1.9e8, 0.78, 0.40, 0.38, 0.65, 0.30},
       {5, "bedrock with thin weathered cover", 5.0e8, 3.0e6, 3.5e8, 8.0e8, 0.62, 0.35, 0.43, 0.70, 0.10},

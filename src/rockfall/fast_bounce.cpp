@@ -71,6 +71,7 @@ class FastBounceRun {
         observer_(observer),
         mass_(rock.mass()),
         inertia_(rock.inertia()),
+        sphere_share_(rolling_share({mass_, inertia_, rock.bounding_radius()}, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX())),
         diameter_(std::cbrt(6.0 * rock.volume() / std::numbers::pi)),
         oriented_(rock.shape != BlockShape::sphere),
         flight_(parameters.gravity, AirDrag{parameters.air_density, parameters.drag_coefficient, rock.frontal_area()},
@@ -156,15 +157,17 @@ class FastBounceRun {
   }
 
   // One step of the rolling/sliding phase that lets fast-mode rocks come to rest (paper 3.3;
-  // Coulomb and vegetation friction of paper 2.1): constant acceleration along the surface, stop
-  // rules, take-off where the ground falls away, and a new contact where it rises.
+  // Coulomb and vegetation friction of paper 2.1; rolling resistance of Azzoni et al. 1995):
+  // constant acceleration along the surface, stop rules, take-off where the ground falls away,
+  // and a new contact where it rises. The rock rolls where the sliding friction can hold its
+  // contact point, and slides without spin elsewhere (docs/rockfall-fast.md, section 5).
   std::optional<StopReason> contact_step() {
     if (t_ >= parameters_.max_time) return StopReason::max_time;
     const double speed = v_.norm();
     const GroundMaterial material = under_.material;
-    if (speed < parameters_.stop_speed && friction_holds(under_.normal, material.rolling_friction)) {
-      return StopReason::at_rest;
-    }
+    const Eigen::Vector3d& n = under_.normal;
+    const double lower_friction = std::min(material.friction, material.rolling_friction);
+    if (speed < parameters_.stop_speed && friction_holds(n, lower_friction)) return StopReason::at_rest;
     if (speed == 0.0) {
       // Restart from rest down the fall line; a rock that comes back to rest within its own
       // diameter of its last restart is caught in a hollow between slopes too steep to hold it.
@@ -173,11 +176,17 @@ class FastBounceRun {
       has_restart_ = true;
       restart_xy_ = here;
     }
-    // Azzoni et al. 1995: a rolling rock accelerates at A (g_t - mu_r g n_z v/|v| - c |v| v).
-    const Eigen::Vector3d pull = contact_acceleration(v_, under_.normal, material.rolling_friction,
-                                                      material.vegetation_deperdition, parameters_.gravity);
-    const double share = rolling_share(rolling_body(q_, h_), under_.normal, speed > 0.0 ? v_ : pull);
-    const Eigen::Vector3d a = share * pull;
+    // Azzoni et al. 1995: a rolling rock accelerates at A (g_t - mu_r g n_z v/|v| - c |v| v); a
+    // sliding one at g_t - mu g n_z v/|v| - c |v| v, as a block without spin (A = 1).
+    const Eigen::Vector3d fall_line = Eigen::Vector3d::UnitZ() - n.z() * n;
+    const double rolling =
+        oriented_ ? rolling_share(rolling_body(q_, h_), n, speed > 0.0 ? v_ : Eigen::Vector3d(-fall_line)) : sphere_share_;
+    const bool rolls = rolls_without_slip(rolling, n.head<2>().norm() / n.z(), material.friction, material.rolling_friction);
+    change_contact_motion(rolls);
+    const double share = rolls ? rolling : 1.0;
+    const double resistance = rolls ? material.rolling_friction : material.friction;
+    const Eigen::Vector3d a = share * contact_acceleration(v_, n, resistance, material.vegetation_deperdition,
+                                                           parameters_.gravity);
     const double dt = std::min({parameters_.contact_time_step, duration_for_length(speed, a.norm(), step_length_),
                                 parameters_.max_time - t_});
     SurfaceMove move = move_on_surface(v_, a, dt);
@@ -203,17 +212,18 @@ class FastBounceRun {
       point = ground_.at(end.x(), end.y());
     }
     const bool takes_off = gap > parameters_.contact_tolerance && flight_clears(move.duration, h_end);
-    // Work of the rolling resistance (exact on a plane) and of the vegetation over the step.
+    // Work of the rolling resistance or sliding friction (exact on a plane) and of the vegetation
+    // over the step.
     const double distance = move.displacement.norm();
     const double mean_square_speed = 0.5 * (speed * speed + move.velocity.squaredNorm());
     const double friction_work = mass_ * distance *
-                                 (material.rolling_friction * parameters_.gravity * under_.normal.z() +
+                                 (resistance * parameters_.gravity * n.z() +
                                   material.vegetation_deperdition * mean_square_speed);
     const Eigen::Vector3d midpoint = p_ + 0.5 * move.displacement;
     if (!takes_off) {
       // Back onto the surface: the lift (or drop) off the tangent plane costs (or gives) m g dz
-      // of the rolling rock's kinetic energy 1/2 m |v|^2 / A, so that following bumps and hollows
-      // creates no energy.
+      // of the rock's kinetic energy 1/2 m |v|^2 / A (A = 1 sliding), so that following bumps and
+      // hollows creates no energy.
       const double lift = point.height + h_end - end.z();
       const double square_speed = move.velocity.squaredNorm();
       if (square_speed > 0.0) {
@@ -237,7 +247,7 @@ class FastBounceRun {
       land(point, true);
       return std::nullopt;
     }
-    roll_on(point, midpoint, friction_work, share);
+    keep_contact(point, midpoint, friction_work, share, rolls);
     sample_if_due();
     return std::nullopt;
   }
@@ -294,20 +304,37 @@ class FastBounceRun {
     const double before = translation_energy() + rotation_energy(rolling_body(q_, h_), w_);
     v_ = start_rolling(rolling_body(q_, h_), point.normal, v_, w_);
     w_ = rolling_spin(rolling_body(q_, h_), point.normal, v_);
+    rolling_ = true;
     report_loss(at, friction + before - kinetic_energy(), deformation + 0.5 * mass_ * v_normal * v_normal);
     enter_contact(point);
   }
 
   // Paper 3.3, fast mode's contact, from one step to the next: the rock stays on the surface at
-  // `point` and keeps rolling; it loses the part of its velocity along the new normal, which
-  // takes the rolling rock's energy 1/2 m v_n^2 / A with it (reported as deformation, with the
+  // `point`, rolling or sliding; it loses the part of its velocity along the new normal, which
+  // takes the energy 1/2 m v_n^2 / A with it (A = 1 sliding; reported as deformation, with the
   // step's friction work).
-  void roll_on(const GroundPoint& point, const Eigen::Vector3d& at, double friction, double share) {
+  void keep_contact(const GroundPoint& point, const Eigen::Vector3d& at, double friction, double share, bool rolls) {
     const double v_normal = v_.dot(point.normal);
     v_ -= v_normal * point.normal;
-    w_ = rolling_spin(rolling_body(q_, h_), point.normal, v_);
+    w_ = rolls ? rolling_spin(rolling_body(q_, h_), point.normal, v_) : Eigen::Vector3d::Zero();
     report_loss(at, friction, 0.5 * mass_ * v_normal * v_normal / share);
     enter_contact(point);
+  }
+
+  // Between rolling and sliding (docs/rockfall-fast.md, section 5): a rock that starts to slide
+  // gives up its spin (a friction loss); one that starts to roll again does so as a touchdown
+  // does (start_rolling).
+  void change_contact_motion(bool rolls) {
+    if (rolls == rolling_) return;
+    rolling_ = rolls;
+    const double before = kinetic_energy();
+    if (rolls) {
+      v_ = start_rolling(rolling_body(q_, h_), under_.normal, v_, w_);
+      w_ = rolling_spin(rolling_body(q_, h_), under_.normal, v_);
+    } else {
+      w_ = Eigen::Vector3d::Zero();
+    }
+    report_loss(p_, before - kinetic_energy(), 0.0);
   }
 
   void enter_contact(const GroundPoint& point) {
@@ -396,6 +423,7 @@ class FastBounceRun {
   TrajectoryObserver& observer_;
   const double mass_;          // kg
   const Eigen::Matrix3d inertia_;  // kg m2 about the centre, local frame
+  const double sphere_share_;      // Azzoni's A of a sphere (5/7), the same in every direction
   const double diameter_;      // m, of the sphere of the same volume: the vegetation's contact length
   const bool oriented_;        // the half height depends on the orientation
   const Flight flight_;
@@ -409,6 +437,7 @@ class FastBounceRun {
   double ground_z_ = 0.0;      // ground height under p_ (m)
   double clearance_ = 0.0;     // contact point above the ground (m)
   bool in_flight_ = true;
+  bool rolling_ = true;        // in contact: rolling (else sliding without spin)
   double hop_limit_ = kInfinity;  // s: first flight step after a bounce ends at its apex at the latest
   GroundPoint under_;          // in contact: the ground under p_
   bool has_restart_ = false;

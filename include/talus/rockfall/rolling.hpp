@@ -34,6 +34,13 @@ inline double rotation_energy(const RollingBody& body, const Eigen::Vector3d& sp
   return 0.5 * spin.dot(body.inertia * spin);
 }
 
+// A rigid rock rolling down ground of slope tan t needs the friction force (1 - A) m g sin t +
+// A mu_r m g cos t at its contact point (Newton and Euler with Azzoni's resisting torque mu_r N r);
+// it rolls without slip where the sliding friction mu can give it: (1 - A) tan t + A mu_r <= mu.
+inline bool rolls_without_slip(double share, double slope_tangent, double sliding_friction, double rolling_friction) {
+  return (1.0 - share) * slope_tangent + share * rolling_friction <= sliding_friction;
+}
+
 // A rock that touches down with the tangential velocity `velocity` and the spin `spin` starts to
 // roll: friction at the contact point conserves the angular momentum about it along the rolling
 // axis, m r v + I_e w_e = (m r + I_e / r) u, so the rolling speed is u = A v + (1 - A) r w_e
