@@ -15,6 +15,7 @@
 #include "talus/gis/gdal_dataset.hpp"
 #include "talus/gis/raster_alignment.hpp"
 #include "talus/gis/release_attributes.hpp"
+#include "talus/gis/release_raster_conditions.hpp"
 
 namespace talus::gis {
 namespace {
@@ -223,7 +224,9 @@ ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& d
   if (dataset->GetLayerCount() > 0) return release_from_vector(*dataset, path, dem, crs, run_rock);
   if (dataset->GetRasterCount() > 0) {
     dataset.reset();
-    return release_from_raster(path, dem, crs);
+    ReleaseSet release = release_from_raster(path, dem, crs);
+    if (run_rock) add_raster_conditions(path, dem.spec(), crs, *run_rock, release);
+    return release;
   }
   throw InputError(name + ": has neither a raster band nor a vector layer");
 }

@@ -4,8 +4,11 @@
 // run rock) not reading them at all.
 #include <gtest/gtest.h>
 
+#include <gdal_priv.h>
+
 #include <array>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <optional>
 
@@ -131,6 +134,90 @@ TEST_F(ReleaseAttributes, ReadsTheCsvAndVrtOfTheDocs) {
   ASSERT_EQ(release.points.size(), 2u);
   expect_box(release.points[0].conditions, {2.0, -1.0, 0.0}, 1.5);
   EXPECT_TRUE(release.points[1].conditions.empty());
+}
+
+// A release raster on the DEM's grid: band 1 the release cells (1), then one band per
+// attribute with the given description and a value per cell ((col, row) -> value; -9999 nodata).
+struct AttributeBandValues {
+  std::string description;
+  std::function<double(int, int)> value;
+};
+
+void write_release_raster(const std::filesystem::path& path, const std::function<double(int, int)>& cells,
+                          const std::vector<AttributeBandValues>& bands) {
+  GDALAllRegister();
+  const test::RasterFixture grid;
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+  GDALDatasetUniquePtr data(driver->Create(path.c_str(), grid.width, grid.height, static_cast<int>(bands.size()) + 1,
+                                           GDT_Float32, nullptr));
+  double transform[6] = {grid.x0, grid.cell, 0.0, grid.y0, 0.0, -grid.cell};
+  data->SetGeoTransform(transform);
+  OGRSpatialReference srs;
+  srs.SetFromUserInput(grid.crs.c_str());
+  data->SetSpatialRef(&srs);
+  for (int b = 0; b <= static_cast<int>(bands.size()); ++b) {
+    GDALRasterBand* band = data->GetRasterBand(b + 1);
+    band->SetNoDataValue(-9999.0);
+    if (b > 0) band->SetDescription(bands[static_cast<std::size_t>(b - 1)].description.c_str());
+    std::vector<float> values(static_cast<std::size_t>(grid.width * grid.height));
+    for (int row = 0; row < grid.height; ++row) {
+      for (int col = 0; col < grid.width; ++col) {
+        values[static_cast<std::size_t>(row * grid.width + col)] =
+            static_cast<float>(b == 0 ? cells(col, row) : bands[static_cast<std::size_t>(b - 1)].value(col, row));
+      }
+    }
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, grid.width, grid.height, values.data(), grid.width, grid.height,
+                             GDT_Float32, 0, 0),
+              CE_None);
+  }
+}
+
+// Two release cells, (5, 5) and (6, 5); the attribute bands give (5, 5) a box of 2 m thrown at
+// 3 m/s east and leave (6, 5) with nodata, which keeps the run's rock; a cell outside the release
+// may hold anything.
+TEST_F(ReleaseAttributes, RasterBandsGiveEachReleaseCellItsConditions) {
+  const auto cells = [](int col, int row) { return row == 5 && (col == 5 || col == 6) ? 1.0 : 0.0; };
+  const auto at_first = [](double value) {
+    return [value](int col, int row) { return col == 5 && row == 5 ? value : (col == 6 && row == 5 ? -9999.0 : -1.0); };
+  };
+  write_release_raster(folder_ / "release.tif", cells,
+                       {{"shape", at_first(3.0)}, {"Block_Size", at_first(2.0)}, {"vx", at_first(3.0)}});
+  const ReleaseSet release = read_release(folder_ / "release.tif", dem_, CrsOption{}, run_rock_);
+  ASSERT_EQ(release.cell_count(), 2u);
+  const ReleaseConditions first = release.cell_conditions(5, 5);
+  ASSERT_TRUE(first.shape && first.axes && first.velocity);
+  EXPECT_EQ(*first.shape, BlockShape::box);
+  EXPECT_EQ(*first.axes, (std::array<double, 3>{2.0, 2.0, 2.0}));
+  EXPECT_EQ(*first.velocity, (std::array<double, 3>{3.0, 0.0, 0.0}));
+  EXPECT_FALSE(first.density || first.release_height);
+  EXPECT_TRUE(release.cell_conditions(6, 5).empty());
+  // Mud flow (no run rock) reads band 1 alone.
+  EXPECT_EQ(read_release(folder_ / "release.tif", dem_, CrsOption{}).polygon_conditions.size(), 0u);
+}
+
+TEST_F(ReleaseAttributes, BadRasterBandsAreRefusedNamingTheBandOrTheCell) {
+  const auto cells = [](int col, int row) { return row == 5 && col == 5 ? 1.0 : 0.0; };
+  const auto everywhere = [](double value) { return [value](int, int) { return value; }; };
+  struct Case {
+    std::string file;
+    AttributeBandValues band;
+    std::vector<std::string> fragments;
+  };
+  for (const Case& c : {Case{"unnamed.tif", {"blocksize", everywhere(2.0)}, {"band 2", "'blocksize'"}},
+                        Case{"shape.tif", {"shape", everywhere(7.0)}, {"cell (column 6, row 6)", "shape 7"}},
+                        Case{"size.tif", {"block_size", everywhere(-1.0)}, {"cell (column 6, row 6)", "block_size -1"}},
+                        Case{"mass.tif", {"mass", everywhere(1e9)}, {"cell (column 6, row 6)", "mass"}}}) {
+    write_release_raster(folder_ / c.file, cells, {c.band});
+    try {
+      read_release(folder_ / c.file, dem_, CrsOption{}, run_rock_);
+      ADD_FAILURE() << c.file << ": no error";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(c.file), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      for (const std::string& fragment : c.fragments) EXPECT_NE(message.find(fragment), std::string::npos) << message;
+    }
+  }
 }
 
 }  // namespace
