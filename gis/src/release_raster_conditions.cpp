@@ -135,11 +135,11 @@ void add_raster_conditions(const std::filesystem::path& path, const GridSpec& de
       }
       const ReleaseConditions conditions = read_release_conditions(feature, run_rock, where);
       if (conditions.empty()) continue;
-      release.polygon_conditions.push_back(conditions);
-      index_of_cell.at(col, row) = static_cast<int>(release.polygon_conditions.size());
+      release.condition_sets.push_back(conditions);
+      index_of_cell.at(col, row) = static_cast<int>(release.condition_sets.size());
     }
   }
-  if (!release.polygon_conditions.empty()) release.polygon_of_cell = std::move(index_of_cell);
+  if (!release.condition_sets.empty()) release.condition_set_of_cell = std::move(index_of_cell);
 }
 
 }  // namespace talus::gis

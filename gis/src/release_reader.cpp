@@ -154,8 +154,8 @@ void burn_polygons(const std::vector<ReleasePolygon>& polygons, const Grid<doubl
   const bool any_conditions =
       std::any_of(polygons.begin(), polygons.end(), [](const ReleasePolygon& p) { return !p.conditions.empty(); });
   if (!any_conditions) return;
-  for (const auto& polygon : polygons) release.polygon_conditions.push_back(polygon.conditions);
-  release.polygon_of_cell = std::move(polygon_of_cell);
+  for (const auto& polygon : polygons) release.condition_sets.push_back(polygon.conditions);
+  release.condition_set_of_cell = std::move(polygon_of_cell);
 }
 
 ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path& path, const Grid<double>& dem,

@@ -36,7 +36,6 @@ struct RockfallOptions {
   FullModelParameters full;
   double fracture_strength = FullModelParameters{}.fracture_strength / 1000.0;  // kN, into full.fracture_strength (N)
   std::vector<std::string> command_line;
-  std::optional<std::uint64_t> only_source, only_run;  // --only-source, --only-run
 };
 
 BlockShape parse_shape(const std::string& text) {
@@ -218,12 +217,11 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   if (!(reference > 0.0 && reference <= 100.0)) {
     throw InputError("[stochastic] noise_reference_size " + std::to_string(reference) + ": expected 0-100 m");
   }
-  if (o.only_run && *o.only_run >= o.settings.runs_per_source) {
-    throw InputError("--only-run " + std::to_string(*o.only_run) + ": runs are numbered 0 to --runs - 1 (" +
+  const std::optional<std::uint64_t>& only_run = o.settings.only_run;
+  if (only_run && *only_run >= o.settings.runs_per_source) {
+    throw InputError("--only-run " + std::to_string(*only_run) + ": runs are numbered 0 to --runs - 1 (" +
                      std::to_string(o.settings.runs_per_source - 1) + ")");
   }
-  o.settings.only_source = o.only_source;
-  o.settings.only_run = o.only_run;
   const int parts = o.full.fracture_parts;
   if (parts != 1 && parts != 2 && parts != 4 && parts != 8) {
     throw InputError("[rock] fracture_parts " + std::to_string(parts) + ": use 1 (intact), 2, 4 or 8");
@@ -247,8 +245,9 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   const gis::Scene scene = gis::load_scene(o.inputs);
   const GroundModel ground = scene.ground_model();
   const std::vector<ReleaseSource> sources = release_sources(*scene.release);
-  if (o.only_source && *o.only_source >= sources.size()) {
-    throw InputError("--only-source " + std::to_string(*o.only_source) + ": sources are numbered 0 to " +
+  const std::optional<std::uint64_t>& only_source = o.settings.only_source;
+  if (only_source && *only_source >= sources.size()) {
+    throw InputError("--only-source " + std::to_string(*only_source) + ": sources are numbered 0 to " +
                      std::to_string(sources.size() - 1) + " (" + o.inputs.release.string() + ")");
   }
   const double read_seconds = seconds_since(start);
@@ -333,9 +332,9 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
   auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(1);
   cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
-  cmd->add_option("--only-source", o->only_source,
+  cmd->add_option("--only-source", o->settings.only_source,
                   "Simulate only this source (0-based, as source_id in trajectories.gpkg), to reproduce a trajectory");
-  cmd->add_option("--only-run", o->only_run, "Simulate only this run of each source (0-based, as run_id)");
+  cmd->add_option("--only-run", o->settings.only_run, "Simulate only this run of each source (0-based, as run_id)");
   cmd->callback([o, table, &action, mode, runs, shape, size, density, seed] {
     const std::pair<CLI::Option*, const char*> flags[] = {{mode, "run.mode"},    {runs, "run.runs"},
                                                           {seed, "run.seed"},    {shape, "rock.shape"},

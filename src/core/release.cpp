@@ -18,9 +18,9 @@ double ReleaseSet::volume() const {
 }
 
 ReleaseConditions ReleaseSet::cell_conditions(int col, int row) const {
-  if (polygon_of_cell.size() == 0) return {};
-  const int polygon = polygon_of_cell.at(col, row);
-  return polygon > 0 ? polygon_conditions[static_cast<std::size_t>(polygon - 1)] : ReleaseConditions{};
+  if (condition_set_of_cell.size() == 0) return {};
+  const int set = condition_set_of_cell.at(col, row);
+  return set > 0 ? condition_sets[static_cast<std::size_t>(set - 1)] : ReleaseConditions{};
 }
 
 }  // namespace talus

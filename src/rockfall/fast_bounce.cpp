@@ -71,7 +71,8 @@ class FastBounceRun {
         observer_(observer),
         mass_(rock.mass()),
         inertia_(rock.inertia()),
-        sphere_share_(rolling_share({mass_, inertia_, rock.bounding_radius()}, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX())),
+        sphere_share_(rolling_share({mass_, inertia_, rock.bounding_radius()}, Eigen::Vector3d::UnitZ(),
+                                    Eigen::Vector3d::UnitX())),
         diameter_(std::cbrt(6.0 * rock.volume() / std::numbers::pi)),
         oriented_(rock.shape != BlockShape::sphere),
         flight_(parameters.gravity, AirDrag{parameters.air_density, parameters.drag_coefficient, rock.frontal_area()},
@@ -281,10 +282,10 @@ class FastBounceRun {
         const Eigen::Vector3d tangential = v_ - v_.dot(n) * n;
         const double normal_energy = 0.5 * mass_ * response.normal_speed * response.normal_speed;
         const double tangential_energy = 0.5 * mass_ * tangential.squaredNorm() +
-                                         rotation_energy(body, rolling_spin(body, n, tangential));
+                                         rotation_energy(body, rolling_spin(h_, n, tangential));
         const double allowed = brought - response.friction_loss - normal_energy;
         if (tangential_energy > allowed) v_ -= (1.0 - std::sqrt(std::max(0.0, allowed) / tangential_energy)) * tangential;
-        w_ = rolling_spin(body, n, v_ - v_.dot(n) * n);
+        w_ = rolling_spin(h_, n, v_ - v_.dot(n) * n);
         report_loss(p_, response.friction_loss, brought - response.friction_loss - kinetic_energy());
         in_flight_ = true;
         hop_limit_ = response.normal_speed / (parameters_.gravity * n.z());
@@ -301,9 +302,10 @@ class FastBounceRun {
   void touch_down(const GroundPoint& point, const Eigen::Vector3d& at, double friction, double deformation) {
     const double v_normal = v_.dot(point.normal);
     v_ -= v_normal * point.normal;
-    const double before = translation_energy() + rotation_energy(rolling_body(q_, h_), w_);
-    v_ = start_rolling(rolling_body(q_, h_), point.normal, v_, w_);
-    w_ = rolling_spin(rolling_body(q_, h_), point.normal, v_);
+    const RollingBody body = rolling_body(q_, h_);
+    const double before = translation_energy() + rotation_energy(body, w_);
+    v_ = start_rolling(body, point.normal, v_, w_);
+    w_ = rolling_spin(h_, point.normal, v_);
     rolling_ = true;
     report_loss(at, friction + before - kinetic_energy(), deformation + 0.5 * mass_ * v_normal * v_normal);
     enter_contact(point);
@@ -316,7 +318,7 @@ class FastBounceRun {
   void keep_contact(const GroundPoint& point, const Eigen::Vector3d& at, double friction, double share, bool rolls) {
     const double v_normal = v_.dot(point.normal);
     v_ -= v_normal * point.normal;
-    w_ = rolls ? rolling_spin(rolling_body(q_, h_), point.normal, v_) : Eigen::Vector3d::Zero();
+    w_ = rolls ? rolling_spin(h_, point.normal, v_) : Eigen::Vector3d::Zero();
     report_loss(at, friction, 0.5 * mass_ * v_normal * v_normal / share);
     enter_contact(point);
   }
@@ -330,7 +332,7 @@ class FastBounceRun {
     const double before = kinetic_energy();
     if (rolls) {
       v_ = start_rolling(rolling_body(q_, h_), under_.normal, v_, w_);
-      w_ = rolling_spin(rolling_body(q_, h_), under_.normal, v_);
+      w_ = rolling_spin(h_, under_.normal, v_);
     } else {
       w_ = Eigen::Vector3d::Zero();
     }

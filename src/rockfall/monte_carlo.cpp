@@ -183,6 +183,14 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
   // failure is thrown, with its source and run, once every thread has left the loop.
   std::exception_ptr failure;
   std::uint64_t failed_run = 0;
+  const auto keep_failure = [&](std::exception_ptr thrown, std::uint64_t k) {
+#pragma omp critical(talus_rockfall_failure)
+    if (failure == nullptr || k < failed_run) {
+      failure = std::move(thrown);
+      failed_run = k;
+    }
+    cancelled.store(true);
+  };
 
 #pragma omp parallel num_threads(threads)
   {
@@ -214,20 +222,10 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       try {
         model.run(perturbed, draws.rock, draws.start, observer);
       } catch (const NumericalFailure& e) {
-#pragma omp critical(talus_rockfall_failure)
-        if (failure == nullptr || k < failed_run) {
-          failure = std::make_exception_ptr(TrajectoryFailure(e.what(), source_index, run));
-          failed_run = k;
-        }
-        cancelled.store(true);
+        keep_failure(std::make_exception_ptr(TrajectoryFailure(e.what(), source_index, run)), k);
         continue;
       } catch (...) {
-#pragma omp critical(talus_rockfall_failure)
-        if (failure == nullptr || k < failed_run) {
-          failure = std::current_exception();
-          failed_run = k;
-        }
-        cancelled.store(true);
+        keep_failure(std::current_exception(), k);
         continue;
       }
       recorder.commit();

@@ -192,7 +192,7 @@ TEST_F(ReleaseAttributes, RasterBandsGiveEachReleaseCellItsConditions) {
   EXPECT_FALSE(first.density || first.release_height);
   EXPECT_TRUE(release.cell_conditions(6, 5).empty());
   // Mud flow (no run rock) reads band 1 alone.
-  EXPECT_EQ(read_release(folder_ / "release.tif", dem_, CrsOption{}).polygon_conditions.size(), 0u);
+  EXPECT_EQ(read_release(folder_ / "release.tif", dem_, CrsOption{}).condition_sets.size(), 0u);
 }
 
 TEST_F(ReleaseAttributes, BadRasterBandsAreRefusedNamingTheBandOrTheCell) {

@@ -20,16 +20,17 @@ struct ReleasePoint {
 struct ReleaseSet {
   Grid<float> depth;                 // m on the DEM grid: > 0 in release cells, 0 elsewhere
   std::vector<ReleasePoint> points;  // point sources
-  // Rock fall, when a release polygon carries attributes: the conditions of each polygon, and
-  // per cell the 1-based index of the polygon that covers it (0: none). Both empty otherwise.
-  std::vector<ReleaseConditions> polygon_conditions;
-  Grid<int> polygon_of_cell;
+  // Rock fall, when release polygons or the bands of a release raster carry attributes: the
+  // distinct sets of conditions (one per polygon, or per raster cell), and per cell the 1-based
+  // index of its set (0: none). Both empty otherwise.
+  std::vector<ReleaseConditions> condition_sets;
+  Grid<int> condition_set_of_cell;
 
   std::size_t cell_count() const;    // cells with depth > 0
   double area() const;               // m2 covered by release cells
   double volume() const;             // m3: sum of depth x cell area
   std::size_t source_count() const { return cell_count() + points.size(); }
-  ReleaseConditions cell_conditions(int col, int row) const;  // those of the cell's polygon (empty: none)
+  ReleaseConditions cell_conditions(int col, int row) const;  // those of the cell's set (empty: none)
 };
 
 }  // namespace talus

@@ -22,11 +22,11 @@ struct RollingBody {
 // inertia about an axis in the ground's plane is used.
 double rolling_share(const RollingBody& body, const Eigen::Vector3d& normal, const Eigen::Vector3d& direction);
 
-// The spin of rolling without slip at the centre's velocity v: normal x v / r (rad/s). Inline, as
-// rotation_energy: fast mode asks for both at every contact step and sample.
-inline Eigen::Vector3d rolling_spin(const RollingBody& body, const Eigen::Vector3d& normal,
-                                    const Eigen::Vector3d& velocity) {
-  return normal.cross(velocity) / body.radius;
+// The spin of rolling without slip at the centre's velocity v, the centre `radius` m above the
+// contact point: normal x v / radius (rad/s). Inline, as rotation_energy: fast mode asks for both
+// at every contact step and sample.
+inline Eigen::Vector3d rolling_spin(double radius, const Eigen::Vector3d& normal, const Eigen::Vector3d& velocity) {
+  return normal.cross(velocity) / radius;
 }
 
 // 1/2 w . I w (J).

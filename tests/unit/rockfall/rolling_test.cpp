@@ -51,7 +51,7 @@ TEST(Rolling, SpinAndRotationEnergyOfRollingWithoutSlip) {
   const RollingBody ball = body_of(sphere, Eigen::Quaterniond::Identity(), 0.5);
   const Eigen::Vector3d normal = Eigen::Vector3d(0.3, 0.0, 1.0).normalized();
   const Eigen::Vector3d velocity = 4.0 * normal.cross(Eigen::Vector3d::UnitY()).cross(normal).normalized();
-  const Eigen::Vector3d spin = rolling_spin(ball, normal, velocity);
+  const Eigen::Vector3d spin = rolling_spin(ball.radius, normal, velocity);
   // The contact point, 0.5 m below the centre along -n, does not move: v + w x (-r n) = 0.
   EXPECT_LT((velocity + spin.cross(-0.5 * normal)).norm(), 1e-12);
   // Rotation carries 2/5 of the translation's energy: the total is 7/5 of it, 1/A.
@@ -69,8 +69,8 @@ TEST(Rolling, StartingToRollConservesAngularMomentumAboutTheContactPoint) {
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d v(6.0, 0.0, 0.0);
   EXPECT_NEAR(start_rolling(ball, up, v, Eigen::Vector3d::Zero()).x(), 5.0 / 7.0 * 6.0, 1e-12);
-  EXPECT_NEAR(start_rolling(ball, up, v, rolling_spin(ball, up, v)).x(), 6.0, 1e-12);
-  const Eigen::Vector3d backspin = -0.5 * rolling_spin(ball, up, v);
+  EXPECT_NEAR(start_rolling(ball, up, v, rolling_spin(ball.radius, up, v)).x(), 6.0, 1e-12);
+  const Eigen::Vector3d backspin = -0.5 * rolling_spin(ball.radius, up, v);
   const double u = start_rolling(ball, up, v, backspin).x();
   EXPECT_NEAR(u, 5.0 / 7.0 * 6.0 - 2.0 / 7.0 * 3.0, 1e-12);
   // Angular momentum about the contact point, m r v + I w_e, before and after.
@@ -79,11 +79,11 @@ TEST(Rolling, StartingToRollConservesAngularMomentumAboutTheContactPoint) {
   EXPECT_NEAR(ball.mass * 0.5 * 6.0 + inertia * backspin.dot(axis), ball.mass * 0.5 * u + inertia * u / 0.5, 1e-9);
   // A rock spinning hard backwards stops rather than rolls back; one spinning hard forwards rolls
   // faster, with no more energy than it brought.
-  EXPECT_EQ(start_rolling(ball, up, v, -10.0 * rolling_spin(ball, up, v)).norm(), 0.0);
-  const Eigen::Vector3d topspin = 3.0 * rolling_spin(ball, up, v);
+  EXPECT_EQ(start_rolling(ball, up, v, -10.0 * rolling_spin(ball.radius, up, v)).norm(), 0.0);
+  const Eigen::Vector3d topspin = 3.0 * rolling_spin(ball.radius, up, v);
   const Eigen::Vector3d after = start_rolling(ball, up, v, topspin);
   const double brought = 0.5 * ball.mass * v.squaredNorm() + rotation_energy(ball, topspin);
-  const double kept = 0.5 * ball.mass * after.squaredNorm() + rotation_energy(ball, rolling_spin(ball, up, after));
+  const double kept = 0.5 * ball.mass * after.squaredNorm() + rotation_energy(ball, rolling_spin(ball.radius, up, after));
   EXPECT_GT(after.x(), 6.0);
   EXPECT_LE(kept, brought * (1.0 + 1e-12));
 }
