@@ -332,9 +332,19 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
   auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(1);
   cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
+  // A run or source number: digits only, so that -1 is refused rather than wrapped to 2^64 - 1.
+  const CLI::Validator whole_number(
+      [](std::string& text) {
+        return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos
+                   ? std::string()
+                   : "expected a whole number, 0 or more, got " + text;
+      },
+      "N");
   cmd->add_option("--only-source", o->settings.only_source,
-                  "Simulate only this source (0-based, as source_id in trajectories.gpkg), to reproduce a trajectory");
-  cmd->add_option("--only-run", o->settings.only_run, "Simulate only this run of each source (0-based, as run_id)");
+                  "Simulate only this source (0-based, as source_id in trajectories.gpkg), to reproduce a trajectory")
+      ->check(whole_number);
+  cmd->add_option("--only-run", o->settings.only_run, "Simulate only this run of each source (0-based, as run_id)")
+      ->check(whole_number);
   cmd->callback([o, table, &action, mode, runs, shape, size, density, seed] {
     const std::pair<CLI::Option*, const char*> flags[] = {{mode, "run.mode"},    {runs, "run.runs"},
                                                           {seed, "run.seed"},    {shape, "rock.shape"},

@@ -122,8 +122,10 @@ TEST_F(RockfallFailure, OnlySourceAndOnlyRunSelectOneTrajectoryOfTheWholeRun) {
   }
 }
 
+// Beyond the run's sources or runs, negative (not wrapped to 2^64 - 1) or not whole: refused.
 TEST_F(RockfallFailure, OnlySourceOrRunBeyondTheRunIsRefused) {
-  for (const auto& [flag, value] : {std::pair{"--only-source", "18"}, {"--only-run", "3"}}) {
+  for (const auto& [flag, value] :
+       {std::pair{"--only-source", "18"}, {"--only-run", "3"}, {"--only-run", "-1"}, {"--only-source", "2.5"}}) {
     std::vector<std::string> arguments = case_arguments(root_ / "refused");
     arguments.insert(arguments.end(), {flag, value});
     const test::ProgramResult result = test::run_talus(arguments, root_);
