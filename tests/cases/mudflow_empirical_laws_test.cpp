@@ -272,53 +272,34 @@ fs::path MudflowEmpiricalLaws::root_;
 Dem MudflowEmpiricalLaws::dem_;
 std::map<int, MudflowEmpiricalLaws::Run> MudflowEmpiricalLaws::runs_;
 
-// The release cells this test builds are those empirical_laws.py counted into releases.csv, and
-// the run releases the nominal volume (depth_m = volume / (cells x 25 m2), rounded to 6 digits).
-TEST_F(MudflowEmpiricalLaws, ReleasesAreTheScriptsAndHoldTheirVolumes) {
+// One test, so that the three runs are made once (each test of a fixture runs in its own process
+// under ctest).
+// - The release cells this test builds are those empirical_laws.py counted into releases.csv, and
+//   the run releases the nominal volume (depth_m = volume / (cells x 25 m2), rounded to 6 digits).
+// - Rickenmann (1999), L = 1.9 V^0.16 H^0.83 (total travel distance, V in m3, H the drop from the
+//   top of the source to the lowest point of the deposit, m): inside [0.72, 5.0] V^0.16 H^0.83.
+// - Corominas (1996), debris flows, all paths: log10(H/L) = -0.105 log10 V - 0.012, 95% limit
+//   0.386.
+// LAHARZ (B = 20 V^(2/3)) is printed, not asserted: 10^3 and 10^4 m3 inundate 10-17 times it
+// (docs/validation.md, "Mud flow: empirical laws").
+TEST_F(MudflowEmpiricalLaws, RunoutsAndAnglesOfReachAreInsideThePublishedBands) {
   for (const int volume : kVolumes) {
     const Run& run = runs_.at(volume);
     ASSERT_EQ(run.result.exit_code, 0) << volume << " m3: " << run.result.err;
     EXPECT_EQ(std::count(run.cells.begin(), run.cells.end(), 1), run.release.cells) << volume << " m3";
-    EXPECT_NEAR(run.point.volume / volume, 1.0, 1e-5) << volume << " m3";
-  }
-}
-
-// Rickenmann (1999), eq. L = 1.9 V^0.16 H^0.83 (total travel distance, V in m3, H the drop from
-// the top of the source to the lowest point of the deposit, m): inside [0.72, 5.0] V^0.16 H^0.83.
-TEST_F(MudflowEmpiricalLaws, TravelDistanceIsInsideRickenmannsBand) {
-  for (const int volume : kVolumes) {
-    const Point& p = runs_.at(volume).point;
+    const Point& p = run.point;
+    EXPECT_NEAR(p.volume / volume, 1.0, 1e-5) << volume << " m3";
     ASSERT_GT(p.drop, 0.0) << volume << " m3";
-    const double predicted = 1.9 * std::pow(p.volume, 0.16) * std::pow(p.drop, 0.83);
-    std::printf("%d m3: H %.1f m, L %.1f m, Rickenmann %.1f m (ratio %.2f)\n", volume, p.drop, p.travel, predicted,
-                p.travel / predicted);
-    EXPECT_GE(p.travel / predicted, 1.9 / 5.0) << volume << " m3";
-    EXPECT_LE(p.travel / predicted, 5.0 / 1.9) << volume << " m3";
-  }
-}
-
-// Corominas (1996), debris flows, all paths: log10(H/L) = -0.105 log10 V - 0.012, 95% limit 0.386.
-TEST_F(MudflowEmpiricalLaws, AngleOfReachIsInsideCorominassBand) {
-  for (const int volume : kVolumes) {
-    const Point& p = runs_.at(volume).point;
     ASSERT_GT(p.travel, 0.0) << volume << " m3";
-    const double fit = -0.105 * std::log10(p.volume) - 0.012;
-    std::printf("%d m3: H/L %.3f, Corominas %.3f (log10 difference %+.3f)\n", volume, p.drop / p.travel,
-                std::pow(10.0, fit), std::log10(p.drop / p.travel) - fit);
-    EXPECT_LE(std::abs(std::log10(p.drop / p.travel) - fit), 0.386) << volume << " m3";
-  }
-}
-
-// LAHARZ for debris flows (Griswold & Iverson 2008): B = 20 V^(2/3); band 2 to 200 V^(2/3).
-// Disabled: today 1000 and 10,000 m3 inundate 16.9 and 13.0 times 20 V^(2/3) (mud 0.1-0.5 m deep
-// spreading sideways; docs/validation.md). Enable it when the area comes into the band.
-TEST_F(MudflowEmpiricalLaws, DISABLED_InundatedAreaIsInsideTheLaharzBand) {
-  for (const int volume : kVolumes) {
-    const Point& p = runs_.at(volume).point;
-    const double predicted = 20.0 * std::pow(p.volume, 2.0 / 3.0);
-    std::printf("%d m3: B %.0f m2, LAHARZ %.0f m2 (ratio %.2f)\n", volume, p.area, predicted, p.area / predicted);
-    EXPECT_GE(p.area / predicted, 0.1) << volume << " m3";
-    EXPECT_LE(p.area / predicted, 10.0) << volume << " m3";
+    const double rickenmann = 1.9 * std::pow(p.volume, 0.16) * std::pow(p.drop, 0.83);
+    const double corominas = -0.105 * std::log10(p.volume) - 0.012;
+    const double laharz = 20.0 * std::pow(p.volume, 2.0 / 3.0);
+    std::printf("%d m3: H %.1f m, L %.1f m (Rickenmann ratio %.2f), H/L %.3f (Corominas %.3f), B %.0f m2 (LAHARZ ratio %.2f)\n",
+                volume, p.drop, p.travel, p.travel / rickenmann, p.drop / p.travel, std::pow(10.0, corominas), p.area,
+                p.area / laharz);
+    EXPECT_GE(p.travel / rickenmann, 1.9 / 5.0) << volume << " m3";
+    EXPECT_LE(p.travel / rickenmann, 5.0 / 1.9) << volume << " m3";
+    EXPECT_LE(std::abs(std::log10(p.drop / p.travel) - corominas), 0.386) << volume << " m3";
   }
 }
 
