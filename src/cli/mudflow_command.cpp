@@ -128,8 +128,7 @@ class ParameterCheck {
 
  private:
   std::string where(const std::string& section, const std::string& name) const {
-    for (const auto& e : table_.entries()) {
-      if (e.section != section || e.name != name || !e.pinned) continue;
+    if (table_.given_on_command_line(section, name)) {
       for (const Flag& flag : kFlags) {
         if (section == flag.section && name == flag.name) return flag.option;
       }
@@ -192,9 +191,7 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(s.entrainment_rate >= 0.0, "entrainment", "rate", s.entrainment_rate, "expected a rate >= 0 1/m");
   check.require(s.arrival_depth > 0.0, "outputs", "arrival_depth", s.arrival_depth, "expected a depth > 0 m");
   check.require(s.map_interval > 0.0, "outputs", "map_interval", s.map_interval, "expected an interval > 0 s");
-  const bool snapshots_flag = std::any_of(table.entries().begin(), table.entries().end(), [](const auto& e) {
-    return e.section == "outputs" && e.name == "snapshot_interval" && e.pinned;
-  });
+  const bool snapshots_flag = table.given_on_command_line("outputs", "snapshot_interval");
   check.require(snapshots_flag ? s.snapshot_interval > 0.0 : s.snapshot_interval >= 0.0, "outputs", "snapshot_interval",
                 s.snapshot_interval, snapshots_flag ? "expected an interval > 0 s" : "expected 0 (none) or an interval > 0 s");
   if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
