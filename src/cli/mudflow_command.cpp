@@ -85,8 +85,11 @@ ParameterTable parameter_table(MudflowOptions& o) {
             "the basal normal stress includes the centripetal term rho0 h u^2 kappa of the ground's curvature", &s.curvature);
   auto& r = s.rheology;
   table.add("rheology", "rheology", "", "basal resistance: viscous, coulomb, voellmy or bingham", &o.rheology);
-  table.add("rheology", "friction_factor", "-", "basal Coulomb friction mu = this x the lithology class's friction",
-            &r.friction_factor);
+  table.add("rheology", "friction", "-", "Coulomb friction coefficient mu of the basal resistance (coulomb, voellmy)",
+            &r.friction);
+  table.retire("rheology", "friction_factor",
+               "no longer used: give [rheology] friction, the friction coefficient mu itself (0-1); the lithology no "
+               "longer sets the mud's friction");
   table.add("rheology", "turbulence", "m/s2", "turbulence coefficient xi of Voellmy", &r.turbulence);
   table.add("rheology", "viscosity", "Pa s", "dynamic viscosity eta (viscous and Bingham)", &r.viscosity);
   table.add("rheology", "yield_stress", "Pa", "yield stress tau_y of Bingham", &r.yield_stress);
@@ -180,7 +183,8 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(s.deepest_level <= 30, "time_steps", "deepest_level", s.deepest_level, "expected 0-30");
   check.require(s.max_retries <= 20, "time_steps", "max_retries", s.max_retries, "expected 0-20");
   check.require(s.unguarded_step >= 0.0, "time_steps", "unguarded_step", s.unguarded_step, "expected 0 (off) or a step > 0 s");
-  check.require(r.friction_factor >= 0.0, "rheology", "friction_factor", r.friction_factor, "expected a factor >= 0");
+  check.require(r.friction >= 0.0 && r.friction <= 1.0, "rheology", "friction", r.friction,
+                "expected a coefficient in [0, 1]");
   check.require(r.turbulence > 0.0, "rheology", "turbulence", r.turbulence, "expected a coefficient > 0 m/s2");
   check.require(r.viscosity >= 0.0, "rheology", "viscosity", r.viscosity, "expected a viscosity >= 0 Pa s");
   check.require(r.yield_stress >= 0.0, "rheology", "yield_stress", r.yield_stress, "expected a stress >= 0 Pa");

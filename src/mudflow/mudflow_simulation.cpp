@@ -79,7 +79,7 @@ void validate(const MudflowSettings& s) {
           "max retries must lie in [0, " + std::to_string(kMostRetries) + "]");
   require(std::isfinite(s.unguarded_step) && s.unguarded_step >= 0, "the forced step must not be negative (s)");
   const RheologyParameters& r = s.rheology;
-  require(r.friction_factor >= 0, "the friction factor must not be negative");
+  require(std::isfinite(r.friction) && r.friction >= 0 && r.friction <= 1, "the friction coefficient must lie in [0, 1]");
   require(r.turbulence > 0, "the Voellmy turbulence xi must be positive (m/s2)");
   require(r.viscosity >= 0 && r.yield_stress >= 0, "viscosity and yield stress must not be negative");
   require(r.internal_viscosity >= 0, "the internal viscosity must not be negative (m2/s)");
@@ -336,9 +336,6 @@ void MudflowRun::update_forces(std::size_t i) {
   BasalContact contact;
   contact.depth = p_.depth[i];
   contact.normal_acceleration = normal_acceleration;
-  // The mud's Coulomb friction scales the class's rolling friction, the single friction the table
-  // held before rock fall split it into sliding and rolling (docs/mudflow.md, rheologies).
-  contact.lithology_friction = ground_.material_field(&GroundMaterial::rolling_friction, square);
   contact.vegetation_deperdition = ground_.material_field(&GroundMaterial::vegetation_deperdition, square);
   resistance_[i] = basal_resistance(s_.rheology, contact, s_.mud_density, g);
   wanted_[i] = static_cast<std::uint8_t>(wanted_level(i));
