@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "mudflow_materials.hpp"
 #include "parameter_table.hpp"
 #include "terminal_progress.hpp"
 #include "talus/core/errors.hpp"
@@ -26,6 +27,7 @@ struct MudflowOptions {
   gis::SceneInputs inputs;
   std::filesystem::path out;
   std::filesystem::path scenario;
+  std::string material = MudflowMaterials::built_in().default_name();  // --material, [mud] material
   std::string rheology = to_string(RheologyParameters{}.rheology);
   std::string adaptive = "on";  // --adaptive on|off, into settings.adaptive
   MudflowSettings settings;
@@ -40,9 +42,9 @@ struct Flag {
   const char* option;
 };
 constexpr Flag kFlags[] = {{"run", "duration", "--duration"},       {"run", "seed", "--seed"},
-                           {"run", "threads", "--threads"},         {"mud", "particle_size", "--particle-size"},
-                           {"adaptivity", "adaptive", "--adaptive"}, {"rheology", "rheology", "--rheology"},
-                           {"outputs", "snapshot_interval", "--snapshots"}};
+                           {"run", "threads", "--threads"},         {"mud", "material", "--material"},
+                           {"mud", "particle_size", "--particle-size"}, {"adaptivity", "adaptive", "--adaptive"},
+                           {"rheology", "rheology", "--rheology"},  {"outputs", "snapshot_interval", "--snapshots"}};
 
 // Every MudflowSettings field (mudflow_simulation.hpp, rheology.hpp) as a scenario parameter.
 ParameterTable parameter_table(MudflowOptions& o) {
@@ -63,6 +65,10 @@ ParameterTable parameter_table(MudflowOptions& o) {
             "densities they read are done, while its neighbour list is in the cache; fewer: all densities first; the "
             "layers do not depend on it",
             &s.interleaved_particles);
+  table.add("mud", "material", "",
+            "material preset that sets the rheology, its parameters and the density before the scenario's own keys: " +
+                MudflowMaterials::built_in().name_list(),
+            &o.material);
   table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density);
   table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity);
   table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size);
@@ -150,6 +156,16 @@ bool parse_on_off(const std::string& text) {
   throw InputError("--adaptive " + text + ": use on or off");
 }
 
+// The material preset named by --material, the scenario's [mud] material or the default, under
+// the scenario's own keys and the flags (docs/mudflow.md, "Materials").
+void apply_material(const MudflowOptions& o, ParameterTable& table) {
+  const MudflowMaterials& materials = MudflowMaterials::built_in();
+  const ParameterCheck check(table, o.scenario);
+  check.require(materials.contains(o.material), "mud", "material", o.material,
+                "expected one of " + materials.name_list());
+  materials.apply(o.material, table);
+}
+
 // Every parameter within the range the model is meant for (docs/mudflow.md).
 void validate(MudflowOptions& o, const ParameterTable& table) {
   const ParameterCheck check(table, o.scenario);
@@ -168,8 +184,8 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
                 "expected 1 or more");
   check.require(s.parallel_check_period == 0 || s.parallel_check_period >= 3, "run", "parallel_check_period",
                 s.parallel_check_period, "expected 0 (always all threads) or 3 or more coarse steps");
-  check.require(s.mud_density >= 1000.0 && s.mud_density <= 3000.0, "mud", "density", s.mud_density,
-                "expected 1000-3000 kg/m3");
+  check.require(s.mud_density >= 100.0 && s.mud_density <= 3000.0, "mud", "density", s.mud_density,
+                "expected 100-3000 kg/m3");
   check.require(s.gravity > 0.0 && s.gravity <= 30.0, "mud", "gravity", s.gravity, "expected 0-30 m/s2");
   check.require(s.particle_size > 0.0, "mud", "particle_size", s.particle_size, "expected a spacing > 0 m");
   check.require(s.coarse_levels <= 8, "adaptivity", "coarse_levels", s.coarse_levels, "expected 0-8");
@@ -207,7 +223,7 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
 std::string scenario_text(const MudflowOptions& o) {
   const auto& s = o.settings;
   std::ostringstream text;
-  text << "mudflow " << o.rheology << ", particle size " << s.particle_size << " m, adaptive "
+  text << "mudflow " << o.material << " (" << o.rheology << "), particle size " << s.particle_size << " m, adaptive "
        << (s.adaptive ? "on" : "off") << ", duration " << s.duration << " s, density " << s.mud_density
        << " kg/m3, seed " << s.seed;
   return text.str();
@@ -311,8 +327,10 @@ void print_summary(const MudflowResult& result, double simulate_seconds, const s
 
 // Resolves and checks the parameters, reads the scene, runs the flow and writes the layer set.
 int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_given) {
-  // The scenario file sets every parameter it names, except those given as flags (pinned).
+  // The scenario file sets every parameter it names, except those given as flags; the material
+  // preset then sets those that neither gives.
   if (!o.scenario.empty()) table.apply_scenario(o.scenario, {});
+  apply_material(o, table);
   if (adaptive_given) o.settings.adaptive = parse_on_off(o.adaptive);
   validate(o, table);
 
@@ -325,9 +343,9 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   const double read_seconds = seconds_since(start);
   for (const auto& note : scene.notes) std::printf("note: %s\n", note.c_str());
   for (const auto& problem : scene.problems) std::printf("problem: %s\n", problem.c_str());
-  std::printf("Mud flow from %zu release cells and %zu points (%s, particle size %g m, adaptive %s) ...\n",
-              scene.release->cell_count(), scene.release->points.size(), o.rheology.c_str(), o.settings.particle_size,
-              o.settings.adaptive ? "on" : "off");
+  std::printf("Mud flow from %zu release cells and %zu points (%s: %s, particle size %g m, adaptive %s) ...\n",
+              scene.release->cell_count(), scene.release->points.size(), o.material.c_str(), o.rheology.c_str(),
+              o.settings.particle_size, o.settings.adaptive ? "on" : "off");
   std::fflush(stdout);
 
   const auto simulate_start = std::chrono::steady_clock::now();
@@ -369,6 +387,10 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
   cmd->add_option("--vegetation", o->inputs.vegetation, "Vegetation raster: class codes or deperdition coefficients (1/m)");
   cmd->add_option("--erodible", o->inputs.erodible, "Raster of erodible depth (m) the flow can entrain");
   cmd->add_option("--materials", o->inputs.materials, "Materials table (TOML); default: built-in");
+  auto* material = cmd->add_option("--material", o->material,
+                  "Material preset: " + MudflowMaterials::built_in().name_list() +
+                      "; the scenario's keys and the other flags override its values (docs/mudflow.md)")
+      ->default_val(o->material);
   cmd->add_option("--scenario", o->scenario,
                   "Scenario TOML: [run], [mud], [adaptivity], [time_steps], [contact], [rheology], [deposition], "
                   "[entrainment], [outputs] (see talus params)");
@@ -387,8 +409,8 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
                                   "Threads (default: all cores). With other jobs on the machine, start Talus with "
                                   "OMP_WAIT_POLICY=passive in the environment (docs/performance.md)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
-  cmd->callback([o, table, &action, duration, size, adaptive, rheology, snapshots, seed, threads] {
-    const CLI::Option* given[] = {duration, seed, threads, size, adaptive, rheology, snapshots};
+  cmd->callback([o, table, &action, duration, material, size, adaptive, rheology, snapshots, seed, threads] {
+    const CLI::Option* given[] = {duration, seed, threads, material, size, adaptive, rheology, snapshots};
     static_assert(std::size(kFlags) == std::size(given));
     for (std::size_t k = 0; k < std::size(kFlags); ++k) {
       if (given[k]->count() > 0) table->pin(kFlags[k].section, kFlags[k].name);
@@ -400,7 +422,11 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
 
 nlohmann::json mudflow_parameters() {
   MudflowOptions defaults;
-  return parameter_table(defaults).describe();
+  ParameterTable table = parameter_table(defaults);
+  apply_material(defaults, table);
+  return table.describe();
 }
+
+nlohmann::json mudflow_materials() { return MudflowMaterials::built_in().describe(); }
 
 }  // namespace talus::cli

@@ -252,6 +252,7 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
   std::ofstream(root / "bad_density.toml") << "[mud]\ndensity = 50\n";
   std::ofstream(root / "old_friction.toml") << "[rheology]\nfriction_factor = 0.5\n";
   std::ofstream(root / "bad_friction.toml") << "[rheology]\nfriction = 1.5\n";
+  std::ofstream(root / "bad_material.toml") << "[mud]\nmaterial = \"honey\"\n";
   const auto out = root / "out";
   const auto sample = sample_arguments(out, "2");
   struct Case {
@@ -272,12 +273,16 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
       {with(sample, {"--snapshots", "0"}), "--snapshots 0: expected an interval > 0 s"},
       {with(sample, {"--duration", "-5"}), "--duration -5: expected a time > 0 s"},
       {with(sample, {"--scenario", (root / "bad_density.toml").string()}),
-       "bad_density.toml (scenario): [mud] density 50: expected 1000-3000 kg/m3"},
+       "bad_density.toml (scenario): [mud] density 50: expected 100-3000 kg/m3"},
       {with(sample, {"--scenario", (root / "old_friction.toml").string()}),
        "old_friction.toml (scenario): [rheology] friction_factor: no longer used: give [rheology] friction, the friction "
        "coefficient mu itself (0-1)"},
       {with(sample, {"--scenario", (root / "bad_friction.toml").string()}),
        "bad_friction.toml (scenario): [rheology] friction 1.5: expected a coefficient in [0, 1]"},
+      {with(sample, {"--material", "honey"}),
+       "--material honey: expected one of debris-flow, granular, mud-flow, rock-avalanche, snow-avalanche"},
+      {with(sample, {"--scenario", (root / "bad_material.toml").string()}),
+       "bad_material.toml (scenario): [mud] material honey: expected one of debris-flow, granular, mud-flow"},
       {dem_missing, "missing.tif (DEM): file not found"},
       {with(sample, {"--erodible", (root / "missing_erodible.tif").string()}), "missing_erodible.tif (erodible): file not found"},
   };

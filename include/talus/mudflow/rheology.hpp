@@ -20,8 +20,9 @@ const char* to_string(Rheology rheology);
 
 struct RheologyParameters {
   Rheology rheology = Rheology::voellmy;
+  // Defaults: the debris-flow material (src/cli/mudflow_materials.toml, docs/mudflow.md "Materials").
   double friction = 0.2;           // Coulomb friction coefficient mu of coulomb and Voellmy (-)
-  double turbulence = 500;         // xi of Voellmy (m/s2)
+  double turbulence = 200;         // xi of Voellmy (m/s2)
   double viscosity = 100;          // dynamic viscosity eta (Pa s): viscous and Bingham
   double yield_stress = 500;       // tau_y of Bingham (Pa)
   double internal_viscosity = 0.5; // kinematic viscosity of the SPH internal friction (m2/s)
