@@ -352,7 +352,6 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   TerminalProgress progress;
   const Grid<float>* erodible = scene.erodible ? &*scene.erodible : nullptr;
   const MudflowResult result = run_mudflow(ground, *scene.release, erodible, o.settings, &progress);
-  progress.report(1.0, "mud flow");  // a run that ends early (energy, outflow) is done too
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -84,7 +85,7 @@ TEST_F(SampleMudflow, WritesEveryLayerOfTheContract) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
   EXPECT_EQ(test::check_layers("mudflow", root_ / "out", test::source_dir() / "sample_dem/dem.tif"), 0);
   EXPECT_NE(result_.out.find("Layers written to"), std::string::npos);
-  EXPECT_NE(result_.err.find("Progress: 100%"), std::string::npos);
+  EXPECT_NE(result_.err.find("Progress: 100% (mud flow: simulated "), std::string::npos) << result_.err;
   EXPECT_FALSE(fs::exists(root_ / "out" / "erosion_depth.tif"));  // no --erodible
   for (const auto& entry : fs::directory_iterator(root_ / "out")) {
     EXPECT_NE(entry.path().filename().string().front(), '.') << "temporary file left: " << entry.path();
@@ -147,6 +148,29 @@ TEST_F(SampleMudflow, LayersOpenStyledInQgis) {
     arguments += " " + (root_ / "out" / (layer + ".tif")).string() + " '" + description + "'";
   }
   EXPECT_EQ(run_python(arguments), 0);
+}
+
+// Issue 20, item 7: the progress lines follow simulated time to the expected end (the energy
+// criterion ends this run before --duration), never go back, and say what is left.
+TEST_F(SampleMudflow, ProgressFollowsTimeToTheExpectedEnd) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  std::vector<int> percents;
+  std::istringstream lines(result_.err);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("Progress: ", 0) != 0) continue;
+    percents.push_back(std::stoi(line.substr(10)));
+    if (percents.back() < 100) {
+      EXPECT_NE(line.find("(mud flow: simulated "), std::string::npos) << line;
+      EXPECT_NE(line.find(" s of about "), std::string::npos) << line;
+      EXPECT_NE(line.find(" s left)"), std::string::npos) << line;
+    }
+  }
+  ASSERT_GE(percents.size(), 2u) << result_.err;
+  EXPECT_TRUE(std::is_sorted(percents.begin(), percents.end())) << result_.err;
+  EXPECT_EQ(percents.back(), 100);
+  // No jump to the end: the line before the last is at 80% or more (before issue 20, 70%).
+  EXPECT_GE(percents[percents.size() - 2], 80) << result_.err;
 }
 
 TEST_F(SampleMudflow, SnapshotsHoldTheParticlesWithTheirTime) {
