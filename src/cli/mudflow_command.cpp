@@ -30,6 +30,7 @@ struct MudflowOptions {
   std::string material = MudflowMaterials::built_in().default_name();  // --material, [mud] material
   std::string rheology = to_string(RheologyParameters{}.rheology);
   std::string adaptive = "on";  // --adaptive on|off, into settings.adaptive
+  std::string release_thickness = to_string(ReleaseThickness::normal);  // into settings.release_thickness
   MudflowSettings settings;
   std::vector<std::string> command_line;
 };
@@ -72,6 +73,9 @@ ParameterTable parameter_table(MudflowOptions& o) {
   table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density);
   table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity);
   table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size);
+  table.add("mud", "release_thickness", "",
+            "how a release depth is measured: normal (to the ground, the thin-layer convention) or vertical",
+            &o.release_thickness);
   table.add("adaptivity", "adaptive", "", "particle fission and fusion and individual time steps (paper 4.2)", &s.adaptive);
   table.add("adaptivity", "coarse_levels", "",
             "particle sizes are particle_size x 2^k, k = 0..coarse_levels; the release uses the coarsest", &s.coarse_levels);
@@ -89,6 +93,10 @@ ParameterTable parameter_table(MudflowOptions& o) {
             &s.unguarded_step);
   table.add("contact", "curvature", "",
             "the basal normal stress includes the centripetal term rho0 h u^2 kappa of the ground's curvature", &s.curvature);
+  table.add("contact", "curvature_span", "m",
+            "kappa is measured between the ground normals this far apart along the velocity (at least one DEM cell and "
+            "the particle's spacing)",
+            &s.curvature_span);
   auto& r = s.rheology;
   table.add("rheology", "rheology", "", "basal resistance: viscous, coulomb, voellmy or bingham", &o.rheology);
   table.add("rheology", "friction", "-", "Coulomb friction coefficient mu of the basal resistance (coulomb, voellmy)",
@@ -175,6 +183,9 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(rheology == "viscous" || rheology == "coulomb" || rheology == "voellmy" || rheology == "bingham", "rheology",
                 "rheology", rheology, "use viscous, coulomb, voellmy or bingham");
   o.settings.rheology.rheology = parse_rheology(rheology);
+  check.require(o.release_thickness == "normal" || o.release_thickness == "vertical", "mud", "release_thickness",
+                o.release_thickness, "use normal or vertical");
+  o.settings.release_thickness = parse_release_thickness(o.release_thickness);
   check.require(s.duration > 0.0 && s.duration <= 86400.0, "run", "duration", s.duration, "expected a time > 0 s, at most a day");
   check.require(s.stop_energy_fraction >= 0.0 && s.stop_energy_fraction < 1.0, "run", "stop_energy_fraction",
                 s.stop_energy_fraction, "expected a fraction in [0, 1)");
@@ -199,6 +210,8 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(s.deepest_level <= 30, "time_steps", "deepest_level", s.deepest_level, "expected 0-30");
   check.require(s.max_retries <= 20, "time_steps", "max_retries", s.max_retries, "expected 0-20");
   check.require(s.unguarded_step >= 0.0, "time_steps", "unguarded_step", s.unguarded_step, "expected 0 (off) or a step > 0 s");
+  check.require(s.curvature_span >= 0.0 && s.curvature_span <= 1000.0, "contact", "curvature_span", s.curvature_span,
+                "expected a length in 0-1000 m");
   check.require(r.friction >= 0.0 && r.friction <= 1.0, "rheology", "friction", r.friction,
                 "expected a coefficient in [0, 1]");
   check.require(r.turbulence > 0.0, "rheology", "turbulence", r.turbulence, "expected a coefficient > 0 m/s2");

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "talus/mudflow/smoothing_kernel.hpp"
+#include "talus/mudflow/surface_following.hpp"
 
 namespace talus {
 namespace {
@@ -18,33 +19,6 @@ bool node_range(double low, double high, int count, int& first, int& last) {
   first = static_cast<int>(std::ceil(std::max(low, 0.0)));
   last = static_cast<int>(std::floor(std::min(high, count - 1.0)));
   return first <= last;
-}
-
-// Slope (dz/dx, dz/dy) at node (col, row) from its valid neighbours: central differences where
-// both neighbours along an axis are valid, one-sided where only one is, 0 where none is. Used at
-// the edge of the valid area, where the bilinear square holding the node is not complete.
-Eigen::Vector2d slope_from_neighbours(const Grid<double>& z, int col, int row) {
-  const GridSpec& spec = z.spec();
-  auto difference = [&](int dc, int dr, double step) {
-    const bool ahead = z.is_valid(col + dc, row + dr);
-    const bool behind = z.is_valid(col - dc, row - dr);
-    const double here = z.at(col, row);
-    if (ahead && behind) return (z.at(col + dc, row + dr) - z.at(col - dc, row - dr)) / (2.0 * step);
-    if (ahead) return (z.at(col + dc, row + dr) - here) / step;
-    if (behind) return (here - z.at(col - dc, row - dr)) / step;
-    return 0.0;
-  };
-  return {difference(1, 0, spec.geotransform[1]), difference(0, 1, spec.geotransform[5])};
-}
-
-// cos(theta) of the ground at the centre of a valid cell (paper 2.2: the bilinear surface's
-// normal there), so that depths are measured normal to the ground.
-double cell_cos_slope(const GroundModel& ground, int col, int row) {
-  const GridSpec& spec = ground.spec();
-  const double x = spec.node_x(col), y = spec.node_y(row);
-  if (ground.contains(x, y)) return ground.normal(x, y).z();
-  const Eigen::Vector2d gradient = slope_from_neighbours(ground.elevation_grid(), col, row);
-  return 1.0 / std::sqrt(1.0 + gradient.squaredNorm());
 }
 
 }  // namespace

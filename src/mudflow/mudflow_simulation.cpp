@@ -80,6 +80,7 @@ void validate(const MudflowSettings& s) {
   require(s.max_retries >= 0 && s.max_retries <= kMostRetries,
           "max retries must lie in [0, " + std::to_string(kMostRetries) + "]");
   require(std::isfinite(s.unguarded_step) && s.unguarded_step >= 0, "the forced step must not be negative (s)");
+  require(std::isfinite(s.curvature_span) && s.curvature_span >= 0, "the curvature span must not be negative (m)");
   const RheologyParameters& r = s.rheology;
   require(std::isfinite(r.friction) && r.friction >= 0 && r.friction <= 1, "the friction coefficient must lie in [0, 1]");
   require(r.turbulence > 0, "the Voellmy turbulence xi must be positive (m/s2)");
@@ -142,6 +143,7 @@ class MudflowRun {
     layout.spacing = settings.particle_size * (settings.adaptive ? std::ldexp(1.0, settings.coarse_levels) : 1.0);
     layout.mud_density = settings.mud_density;
     layout.seed = settings.seed;
+    layout.thickness = settings.release_thickness;
     p_ = release_particles(ground, release, layout);
     if (erodible != nullptr) {
       require_same_grid(ground.spec(), erodible->spec(), "mudflow: DEM and erodible depth");
@@ -213,7 +215,7 @@ class MudflowRun {
   const ColumnConstants column_;
   const FlowForceConstants forces_;
   const StepCriteria criteria_;
-  const double largest_cell_;    // m: the DEM's larger cell side; curvature_along spans at least half of it
+  const double largest_cell_;    // m: the DEM's larger cell side; the curvature spans at least one
 
   ParticleSet p_;
   PairSearch pairs_;  // the sums' pairs, with the smoothing radii; the adaptivity's, with the support radii
@@ -342,7 +344,8 @@ void MudflowRun::update_forces(std::size_t i) {
   const NodeSquare square = ground_.locate(p_.x[i], p_.y[i]);
   if (s_.curvature && speed > 0.0) {
     const double spacing = p_.radius[i] / kSupportPerSpacing;
-    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, 0.5 * std::max(largest_cell_, spacing));
+    const double half_span = 0.5 * std::max({s_.curvature_span, largest_cell_, spacing});
+    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, half_span);
     normal_acceleration = std::max(0.0, normal_acceleration + kappa * speed * speed);
   }
   BasalContact contact;

@@ -9,6 +9,7 @@
 #include "talus/core/counter_random.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
+#include "talus/mudflow/surface_following.hpp"
 
 namespace talus {
 namespace {
@@ -33,10 +34,10 @@ CellLattice lattice_for(const GridSpec& spec, double spacing) {
   return lattice;
 }
 
-// Adds the particles of one cell-sized column of depth d (m) centred on (cx, cy) (m): mass rho0
-// d A shared by the lattice places on the ground surface, at rest on it.
+// Adds the particles of one cell-sized column of `column_mass` (kg) centred on (cx, cy) (m),
+// shared by the lattice places on the ground surface, at rest on it.
 void release_column(const GroundModel& ground, const ReleaseLayout& layout, const CellLattice& lattice, double cx,
-                    double cy, double depth, std::uint64_t source, ParticleSet& particles) {
+                    double cy, double column_mass, std::uint64_t source, ParticleSet& particles) {
   const double width = lattice.step_x * lattice.columns, height = lattice.step_y * lattice.rows;  // m
   std::vector<Eigen::Vector2d> places;
   places.reserve(static_cast<std::size_t>(lattice.columns) * static_cast<std::size_t>(lattice.rows));
@@ -58,7 +59,6 @@ void release_column(const GroundModel& ground, const ReleaseLayout& layout, cons
     }
   }
   if (places.empty()) return;
-  const double column_mass = layout.mud_density * depth * lattice.cell_area;  // kg
   const double particle_mass = column_mass / static_cast<double>(places.size());
   for (const Eigen::Vector2d& p : places) {
     particles.add(particle_mass, {p.x(), p.y(), ground.elevation(p.x(), p.y())}, Eigen::Vector3d::Zero(),
@@ -98,7 +98,26 @@ void check_layout(const ReleaseLayout& layout) {
   if (!(layout.jitter >= 0.0 && layout.jitter <= 1.0)) throw InputError("mud flow: release jitter must be in [0, 1]");
 }
 
+// rho0 d A (kg) of a cell-sized column of depth d (m) at DEM cell (col, row), divided by cos(theta)
+// there when d is the thickness normal to the ground.
+double column_mass(const GroundModel& ground, const ReleaseLayout& layout, const CellLattice& lattice, int col, int row,
+                   double depth) {
+  const double vertical = layout.mud_density * depth * lattice.cell_area;
+  if (layout.thickness == ReleaseThickness::vertical) return vertical;
+  return vertical / cell_cos_slope(ground, col, row);
+}
+
 }  // namespace
+
+ReleaseThickness parse_release_thickness(const std::string& text) {
+  if (text == "normal") return ReleaseThickness::normal;
+  if (text == "vertical") return ReleaseThickness::vertical;
+  throw InputError("unknown release thickness '" + text + "': expected normal or vertical");
+}
+
+const char* to_string(ReleaseThickness thickness) {
+  return thickness == ReleaseThickness::normal ? "normal" : "vertical";
+}
 
 // Cells in index order, then points (DESIGN.md section 3 --release), each a column of rho0 d A.
 ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& release, const ReleaseLayout& layout) {
@@ -115,14 +134,20 @@ ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& relea
         const std::size_t cell = dem.index(col, row);
         const double depth = static_cast<double>(release.depth[cell]);
         if (!(depth > 0.0) || !dem.is_valid(cell)) continue;
-        release_column(ground, layout, lattice, spec.node_x(col), spec.node_y(row), depth, cell, particles);
+        release_column(ground, layout, lattice, spec.node_x(col), spec.node_y(row),
+                       column_mass(ground, layout, lattice, col, row, depth), cell, particles);
       }
     }
   }
   for (std::size_t k = 0; k < release.points.size(); ++k) {
     const ReleasePoint& point = release.points[k];
     if (!(point.depth > 0.0)) continue;
-    release_column(ground, layout, lattice, point.x, point.y, point.depth, spec.cell_count() + k, particles);
+    const double col_at = spec.col_of(point.x), row_at = spec.row_of(point.y);  // cells, from the first centre
+    if (!(col_at > -0.5 && col_at < spec.width - 0.5 && row_at > -0.5 && row_at < spec.height - 0.5)) continue;
+    const int col = static_cast<int>(std::lround(col_at)), row = static_cast<int>(std::lround(row_at));
+    if (!dem.is_valid(col, row)) continue;
+    release_column(ground, layout, lattice, point.x, point.y, column_mass(ground, layout, lattice, col, row, point.depth),
+                   spec.cell_count() + k, particles);
   }
   return particles;
 }

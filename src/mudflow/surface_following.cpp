@@ -4,6 +4,26 @@
 #include <cmath>
 
 namespace talus {
+namespace {
+
+// Slope (dz/dx, dz/dy) at node (col, row) from its valid neighbours: central differences where
+// both neighbours along an axis are valid, one-sided where only one is, 0 where none is.
+Eigen::Vector2d slope_from_neighbours(const Grid<double>& z, int col, int row) {
+  const GridSpec& spec = z.spec();
+  auto difference = [&](int dc, int dr, double step) {
+    const bool ahead = z.is_valid(col + dc, row + dr);
+    const bool behind = z.is_valid(col - dc, row - dr);
+    const double here = z.at(col, row);
+    if (ahead && behind) return (z.at(col + dc, row + dr) - z.at(col - dc, row - dr)) / (2.0 * step);
+    if (ahead) return (z.at(col + dc, row + dr) - here) / step;
+    if (behind) return (here - z.at(col - dc, row - dr)) / step;
+    return 0.0;
+  };
+  return {difference(1, 0, spec.geotransform[1]), difference(0, 1, spec.geotransform[5])};
+}
+
+}  // namespace
+
 
 // The normal of z = f(x, y) is (-f_x, -f_y, 1) / |(-f_x, -f_y, 1)| (paper 2.2, fig. 3a).
 Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square) {
@@ -64,6 +84,13 @@ double curvature_along(const GroundModel& ground, double x, double y, const Eige
   const double path = (a - b).norm();
   if (!(path > 0.0)) return 0.0;
   return -(ground_normal(ground, ahead) - ground_normal(ground, behind)).dot(direction) / path;
+}
+
+// The slope's central differences at the node: the mean of the four bilinear squares' gradients
+// there, where the surface itself has a kink (paper 2.2).
+double cell_cos_slope(const GroundModel& ground, int col, int row) {
+  const Eigen::Vector2d gradient = slope_from_neighbours(ground.elevation_grid(), col, row);
+  return 1.0 / std::sqrt(1.0 + gradient.squaredNorm());
 }
 
 }  // namespace talus

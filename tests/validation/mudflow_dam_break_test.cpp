@@ -47,6 +47,7 @@ MudflowSettings dam_break_settings(double particle_size, double duration, double
   s.rheology.friction = mu;
   s.rheology.internal_viscosity = 0.01;  // m2/s: the closed forms have none
   s.stop_energy_fraction = 0.0;
+  s.release_thickness = ReleaseThickness::vertical;  // the scene's depths are heights of vertical columns
   s.snapshot_interval = 0.5;
   s.curvature = false;  // planes: no curvature, no need to look for it
   s.threads = 1;        // the result is the same at any count (mudflow_thread_determinism_test.cpp)

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "mudflow_scenes.hpp"
+#include "talus/mudflow/surface_following.hpp"
 
 namespace talus {
 namespace {
@@ -26,15 +27,15 @@ TEST(MudflowDepositVolume, DepositHoldsTheReleasedAndTheEntrainedMud) {
   EXPECT_NEAR(result.entrained_volume, entrained, 1e-4 * released);
   // The engine counts the deposit in vertical columns; the layer holds depth normal to the
   // ground, so part of the deposit at the foot of the 30 degree slope reads cos(30) of its
-  // column. Divided by the cos(theta) of each cell's centre (paper 2.2 normal), the layer gives
-  // the engine's volume to 1e-6 (float layers).
+  // column. Divided by the cos(theta) of each cell's centre (the slope's central differences,
+  // cell_cos_slope), the layer gives the engine's volume to 1e-6 (float layers).
   const Grid<float>& deposit = result.layers.deposit_depth;
   const GridSpec& grid = deposit.spec();
   double vertical = 0;  // m3
   for (int row = 0; row < grid.height; ++row) {
     for (int col = 0; col < grid.width; ++col) {
       if (!deposit.is_valid(col, row)) continue;
-      const double cos_theta = chute.ground_model.normal(grid.node_x(col), grid.node_y(row)).z();
+      const double cos_theta = cell_cos_slope(chute.ground_model, col, row);
       vertical += deposit.at(col, row) / cos_theta * grid.cell_area();
     }
   }

@@ -113,6 +113,7 @@ struct Chute {
     s.rheology.rheology = Rheology::coulomb;
     s.rheology.friction = std::tan(std::numbers::pi / 9.0);
     s.entrainment_rate = 0.02;
+    s.release_thickness = ReleaseThickness::vertical;  // the scene's depths are heights of vertical columns
     return s;
   }
 };

@@ -18,6 +18,7 @@
 #include "talus/core/release.hpp"
 #include "talus/ground/ground_model.hpp"
 #include "talus/mudflow/flow_maps.hpp"
+#include "talus/mudflow/release_particles.hpp"
 #include "talus/mudflow/rheology.hpp"
 
 namespace talus {
@@ -37,6 +38,7 @@ struct MudflowSettings {
   double mud_density = 2000;        // rho0 (kg/m3)
   double gravity = 9.81;            // m/s2
   double particle_size = 2.5;       // m: spacing of the finest particles
+  ReleaseThickness release_thickness = ReleaseThickness::normal;  // how a release depth is measured
   bool adaptive = true;             // fission/fusion and individual time steps (paper 4.2)
   int coarse_levels = 2;            // adaptive: sizes particle_size x 2^k, k = 0..coarse_levels; released at the coarsest
   double split_threshold = 0.5;     // split when size x |grad P| / P exceeds this (-)
@@ -51,6 +53,8 @@ struct MudflowSettings {
   double unguarded_step = 0;        // s: > 0 forces this global step and ignores the Courant condition (tests)
   // Ground contact.
   bool curvature = true;            // the basal normal stress includes the centripetal term rho0 h u^2 kappa
+  double curvature_span = 20;       // m: kappa is measured between the ground normals this far apart along
+                                    // the velocity (at least one cell and the particle's spacing)
   // Rheology, deposition and entrainment.
   RheologyParameters rheology;
   double stop_speed = 0.05;         // m/s: slower than this for stop_duration, and held by the bed, it deposits

@@ -2,10 +2,13 @@
 // depth d (m) becomes particles of the chosen spacing, laid on a square lattice inside the cell
 // and jittered by counter-based random numbers of (seed, cell), so the same seed gives the same
 // particles whatever the thread count. A release point releases one DEM cell around it.
-// The depth is that of a vertical column: a cell releases rho0 d A (kg), A the cell area (m2).
+// The depth is the thickness normal to the ground (the thin-layer convention of Savage & Hutter
+// and com1DFA), a cell releasing rho0 d A / cos(theta) (kg), A the cell's horizontal area (m2) and
+// theta the slope at its centre; or, by choice, the height of a vertical column, rho0 d A.
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "talus/core/release.hpp"
 #include "talus/ground/ground_model.hpp"
@@ -13,11 +16,21 @@
 
 namespace talus {
 
+// How a release depth is measured (docs/inputs.md, "Release").
+enum class ReleaseThickness {
+  normal,    // normal to the ground: the column's thickness, as the flow depths are
+  vertical,  // vertically: the height of the column over the horizontal cell
+};
+// "normal", "vertical"; throws InputError naming the text otherwise.
+ReleaseThickness parse_release_thickness(const std::string& text);
+const char* to_string(ReleaseThickness thickness);
+
 struct ReleaseLayout {
   double spacing = 2.5;          // m: particle spacing (the particle size)
   double mud_density = 2000;     // kg/m3
   double jitter = 0.25;          // fraction of the spacing by which places are shifted at random (-), in [0, 1]
   std::uint64_t seed = 1;
+  ReleaseThickness thickness = ReleaseThickness::normal;
 };
 
 // Particles at rest for the release, in cell index order, then the points in their order.
@@ -25,7 +38,8 @@ struct ReleaseLayout {
 // round(cell side / spacing)) per axis, each shifted by up to +-jitter / 2 of the lattice step
 // per axis with CounterRandom(seed, cell index, place index); a place off the ground surface
 // falls back to its lattice point and is dropped if that is off too; the cell's mass rho0 d A
-// is shared equally by its places. Support radius: kSupportPerSpacing x sqrt(step_x step_y).
+// (normal thickness: rho0 d A / cos(theta), theta at the cell centre; a point takes the cell
+// under it) is shared equally by its places. Support radius: kSupportPerSpacing x sqrt(step_x step_y).
 // A point with depth > 0 is a cell-sized square centred on it (random source: cell count +
 // point index). Masses sum to rho0 x the released volume up to rounding (cells outside the
 // ground model's valid area release nothing). release.depth must be on the DEM grid (or

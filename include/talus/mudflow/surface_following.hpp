@@ -55,4 +55,8 @@ bool drift_on_ground(const GroundModel& ground, ParticleSet& particles, std::siz
 double curvature_along(const GroundModel& ground, double x, double y, const Eigen::Vector3d& direction,
                        double half_span);
 
+// cos(theta) of the ground at the centre of valid DEM cell (col, row), from the slope's central
+// differences there (one-sided where only one neighbour along an axis is valid, 0 where none is).
+double cell_cos_slope(const GroundModel& ground, int col, int row);
+
 }  // namespace talus

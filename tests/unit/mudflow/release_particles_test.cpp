@@ -3,6 +3,7 @@
 #include "talus/mudflow/release_particles.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <utility>
 
@@ -41,6 +42,7 @@ TEST(ReleaseParticles, MassIsDensityTimesVolumeAndParticlesRestOnTheGround) {
   for (const double spacing : {2.5, 1.7, 8.0}) {  // 2 x 2, 3 x 3 and 1 particle per cell
     ReleaseLayout layout;
     layout.spacing = spacing;
+    layout.thickness = ReleaseThickness::vertical;  // depths as heights of vertical columns
     const ParticleSet particles = release_particles(ground, release, layout);
     const int n = std::max(1, static_cast<int>(std::lround(5.0 / spacing)));
     ASSERT_EQ(particles.size(), static_cast<std::size_t>(21 * n * n));
@@ -91,6 +93,7 @@ TEST(ReleaseParticles, APointReleasesOneCellAroundIt) {
   release.points.push_back({23.7, -31.2, 1.5, {}});
   release.points.push_back({10.0, -10.0, 0.0, {}});  // no depth: nothing
   ReleaseLayout layout;
+  layout.thickness = ReleaseThickness::vertical;
   const ParticleSet particles = release_particles(ground, release, layout);
   ASSERT_EQ(particles.size(), 4u);
   const double expected = layout.mud_density * 1.5 * 25.0;  // kg
@@ -129,10 +132,34 @@ TEST(ReleaseParticles, ABorderCellKeepsItsMassOnTheSurface) {
   release.depth = Grid<float>(spec, 0.0f);
   release.depth.at(0, 0) = 1.0f;
   ReleaseLayout layout;
+  layout.thickness = ReleaseThickness::vertical;
   const ParticleSet particles = release_particles(ground, release, layout);
   ASSERT_EQ(particles.size(), 1u);
   EXPECT_TRUE(ground.contains(particles.x[0], particles.y[0]));
   EXPECT_NEAR(particles.total_mass(), layout.mud_density * 25.0, 1e-12 * layout.mud_density * 25.0);
+}
+
+// The thin-layer convention (docs/inputs.md, Release): a depth d normal to a plane of slope phi
+// releases rho0 d A / cos(phi), the vertical column of the same mass being d / cos(phi) high.
+TEST(ReleaseParticles, NormalThicknessReleasesDepthOverTheCosineOfTheSlope) {
+  const GridSpec spec = local_spec(12, 12, 5.0);
+  const double phi = 35.0 * std::numbers::pi / 180.0;
+  Grid<double> z(spec, 0.0);
+  for (int row = 0; row < spec.height; ++row) {
+    for (int col = 0; col < spec.width; ++col) z.at(col, row) = 500.0 - std::tan(phi) * spec.node_x(col);
+  }
+  const GroundModel ground(std::move(z), Grid<GroundMaterial>(spec, fast_material(0.5, 0.8, 0.6)));
+  const ReleaseSet release = released_cells(spec);
+  ReleaseLayout layout;
+  ASSERT_EQ(layout.thickness, ReleaseThickness::normal);  // the default
+  const double normal = release_particles(ground, release, layout).total_mass();
+  layout.thickness = ReleaseThickness::vertical;
+  const double vertical = release_particles(ground, release, layout).total_mass();
+  EXPECT_NEAR(vertical, layout.mud_density * release.volume(), 1e-12 * vertical);
+  EXPECT_NEAR(normal, vertical / std::cos(phi), 1e-12 * normal);
+  EXPECT_EQ(parse_release_thickness("normal"), ReleaseThickness::normal);
+  EXPECT_EQ(parse_release_thickness("vertical"), ReleaseThickness::vertical);
+  EXPECT_THROW(parse_release_thickness("slope"), InputError);
 }
 
 TEST(ReleaseParticles, RefusesLayoutsOutOfRangeAndOtherGrids) {

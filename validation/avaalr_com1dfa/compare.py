@@ -1,0 +1,181 @@
+#!/usr/bin/python3
+"""Talus's mud-flow layers on avaAlr against AvaFrame com1DFA's peak fields.
+
+Usage: compare.py TALUS_OUT [--png DIR] [--shared DIR]
+
+TALUS_OUT is the --out folder of
+  build/talus mudflow --dem ../shared/data/tirol_alr/avaAlr.tif \
+      --release validation/avaalr_com1dfa/release.vrt \
+      --scenario validation/avaalr_com1dfa/scenario.toml --out TALUS_OUT
+Prints the comparison table of docs/validation.md ("Mud flow: code-to-code (AvaFrame
+com1DFA)") as Markdown; with --png, writes the difference maps there.
+
+Definitions (the same as tests/cases/avaalr_com1dfa_test.cpp):
+- affected area: cells whose peak flow thickness exceeds 0.1 m (km2);
+- footprint IoU: intersection over union of the two affected areas;
+- runout along the path: the longest path inside the affected area (and the release) from the
+  release's highest cell, over the cell centres with steps to the 16 nearest neighbours
+  (a step of two cells needs the cell it passes to be inside too);
+- travel angle: atan(drop from the release's highest cell to the farthest cell / runout);
+- peak thickness and peak velocity: the maxima of the layers over the affected area.
+"""
+import argparse
+import heapq
+import json
+import math
+import pathlib
+
+import numpy as np
+from osgeo import gdal
+
+gdal.UseExceptions()
+THRESHOLD = 0.1  # m: affected-area threshold on the peak flow thickness
+
+
+def read(path):
+    dataset = gdal.Open(str(path))  # kept while its band is read
+    band = dataset.GetRasterBand(1)
+    values = band.ReadAsArray().astype(float)
+    nodata = band.GetNoDataValue()
+    if nodata is not None:
+        values[values == nodata] = 0.0
+    values[~np.isfinite(values)] = 0.0
+    return np.maximum(values, 0.0)
+
+
+def steps16():
+    """Steps to the 16 nearest neighbours, each with the cell it passes (itself for the 8 nearest)."""
+    return [(dr, dc, math.hypot(dr, dc), (int(dr / 2), int(dc / 2)))
+            for dr in range(-2, 3) for dc in range(-2, 3)
+            if (dr, dc) != (0, 0) and math.gcd(abs(dr), abs(dc)) == 1]
+
+
+def path_distances(inside, start, cell):
+    """Shortest distances (m) inside `inside` from `start` over the 16-neighbour steps."""
+    rows, cols = inside.shape
+    distance = np.full(inside.shape, np.inf)
+    distance[start] = 0.0
+    queue = [(0.0, start)]
+    steps = steps16()
+    while queue:
+        d, (r, c) = heapq.heappop(queue)
+        if d > distance[r, c]:
+            continue
+        for dr, dc, length, via in steps:
+            rr, cc = r + dr, c + dc
+            if not (0 <= rr < rows and 0 <= cc < cols) or not inside[rr, cc]:
+                continue
+            if not inside[r + via[0], c + via[1]]:
+                continue
+            nd = d + length * cell
+            if nd < distance[rr, cc]:
+                distance[rr, cc] = nd
+                heapq.heappush(queue, (nd, (rr, cc)))
+    return distance
+
+
+def footprint_figures(thickness, velocity, release, z, cell):
+    affected = thickness > THRESHOLD
+    start = np.unravel_index(np.argmax(np.where(release, z, -np.inf)), z.shape)
+    distance = path_distances(affected | release, start, cell)
+    distance[~np.isfinite(distance)] = -1.0
+    far = np.unravel_index(np.argmax(distance), z.shape)
+    runout = float(distance[far])
+    return {
+        "area_km2": affected.sum() * cell * cell * 1e-6,
+        "runout_m": runout,
+        "travel_angle_deg": math.degrees(math.atan2(z[start] - z[far], runout)),
+        "peak_thickness_m": float(thickness[affected].max()),
+        "peak_velocity_ms": float(velocity[affected].max()),
+        "affected": affected,
+    }
+
+
+def difference_map(path, title, talus, reference, z, unit, limit):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    either = (talus > 0) | (reference > 0)
+    rows = np.where(either.any(axis=1))[0]
+    cols = np.where(either.any(axis=0))[0]
+    r0, r1 = max(rows[0] - 20, 0), min(rows[-1] + 20, z.shape[0])
+    c0, c1 = max(cols[0] - 20, 0), min(cols[-1] + 20, z.shape[1])
+    dy, dx = np.gradient(np.where(z > -1000, z, np.nan)[r0:r1, c0:c1], 5.0)
+    shade = 1.0 - np.hypot(dx, dy) / 2.0
+    difference = np.ma.masked_where(~either[r0:r1, c0:c1], (talus - reference)[r0:r1, c0:c1])
+    fig, ax = plt.subplots(figsize=(5.5, 8))
+    ax.imshow(shade, cmap="gray", vmin=0, vmax=1)
+    image = ax.imshow(difference, cmap="RdBu_r", vmin=-limit, vmax=limit)
+    ax.set_title(title)
+    ax.set_xticks([])
+    ax.set_yticks([])
+    fig.colorbar(image, ax=ax, shrink=0.6, label=f"Talus - com1DFA ({unit})")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("talus_out", type=pathlib.Path)
+    parser.add_argument("--png", type=pathlib.Path, help="folder for the difference maps")
+    parser.add_argument("--shared", type=pathlib.Path,
+                        default=pathlib.Path(__file__).resolve().parents[3] / "shared",
+                        help="the shared data folder (default: ../shared beside the repository)")
+    args = parser.parse_args()
+
+    reference_dir = args.shared / "data" / "avaframe_alr_com1dfa"
+    dem = gdal.Open(str(args.shared / "data" / "tirol_alr" / "avaAlr.tif"))
+    z = dem.ReadAsArray().astype(float)
+    cell = dem.GetGeoTransform()[1]
+    release_raster = gdal.Rasterize("/vsimem/release.tif", str(pathlib.Path(__file__).with_name("release.vrt")),
+                             format="GTiff", width=dem.RasterXSize, height=dem.RasterYSize,
+                             outputBounds=[dem.GetGeoTransform()[0],
+                                           dem.GetGeoTransform()[3] - cell * dem.RasterYSize,
+                                           dem.GetGeoTransform()[0] + cell * dem.RasterXSize,
+                                           dem.GetGeoTransform()[3]],
+                             burnValues=[1], outputType=gdal.GDT_Byte)
+    release = release_raster.ReadAsArray() > 0
+
+    com_thickness = read(reference_dir / "com1dfa_voellmy_pft.tif")
+    com_velocity = read(reference_dir / "com1dfa_voellmy_pfv.tif")
+    talus_thickness = read(args.talus_out / "flow_depth_max.tif")
+    talus_velocity = read(args.talus_out / "velocity_max.tif")
+    com = footprint_figures(com_thickness, com_velocity, release, z, cell)
+    talus = footprint_figures(talus_thickness, talus_velocity, release, z, cell)
+    a, b = com["affected"], talus["affected"]
+    iou = (a & b).sum() / (a | b).sum()
+    both = a & b
+    run = json.loads((args.talus_out / "run.json").read_text())
+    released = run.get("volumes_m3", {}).get("released")
+
+    def row(name, key, unit, digits):
+        ratio = talus[key] / com[key] - 1.0
+        return f"| {name} ({unit}) | {com[key]:.{digits}f} | {talus[key]:.{digits}f} | {ratio:+.1%} |"
+
+    print("| figure | com1DFA | Talus | difference |")
+    print("|---|---|---|---|")
+    if released is not None:
+        print(f"| released volume (m3) | 52796 | {released:.0f} | {released / 52796 - 1:+.1%} |")
+    print(row("affected area, peak thickness > 0.1 m", "area_km2", "km2", 3))
+    print(f"| footprint IoU | - | {iou:.3f} | - |")
+    print(row("runout along the path", "runout_m", "m", 0))
+    print(row("travel angle", "travel_angle_deg", "deg", 2))
+    print(row("peak flow thickness", "peak_thickness_m", "m", 2))
+    print(row("peak velocity", "peak_velocity_ms", "m/s", 1))
+    dh = talus_thickness[both] - com_thickness[both]
+    dv = talus_velocity[both] - com_velocity[both]
+    print(f"| peak thickness where both reach: mean / RMS difference (m) | - | {dh.mean():+.2f} / {np.sqrt((dh**2).mean()):.2f} | - |")
+    print(f"| peak velocity where both reach: mean / RMS difference (m/s) | - | {dv.mean():+.1f} / {np.sqrt((dv**2).mean()):.1f} | - |")
+    if args.png:
+        args.png.mkdir(parents=True, exist_ok=True)
+        difference_map(args.png / "avaalr-thickness-difference.png", "Peak flow thickness, Talus - com1DFA",
+                       talus_thickness, com_thickness, z, "m", 5.0)
+        difference_map(args.png / "avaalr-velocity-difference.png", "Peak velocity, Talus - com1DFA",
+                       talus_velocity, com_velocity, z, "m/s", 20.0)
+
+
+if __name__ == "__main__":
+    main()
