@@ -21,7 +21,9 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
 
 // Every rock-fall parameter with its section, unit, meaning and default.
 nlohmann::json rockfall_parameters();
-// Every mud-flow parameter with its section, unit, meaning and default.
+// Every mud-flow parameter with its section, unit, meaning and default (the default material's).
 nlohmann::json mudflow_parameters();
+// The mud-flow material presets with their descriptions and parameters.
+nlohmann::json mudflow_materials();
 
 }  // namespace talus::cli

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "mudflow_materials.hpp"
 #include "parameter_table.hpp"
 #include "terminal_progress.hpp"
 #include "talus/core/errors.hpp"
@@ -26,6 +27,7 @@ struct MudflowOptions {
   gis::SceneInputs inputs;
   std::filesystem::path out;
   std::filesystem::path scenario;
+  std::string material = MudflowMaterials::built_in().default_name();  // --material, [mud] material
   std::string rheology = to_string(RheologyParameters{}.rheology);
   std::string adaptive = "on";  // --adaptive on|off, into settings.adaptive
   std::string release_thickness = to_string(ReleaseThickness::normal);  // into settings.release_thickness
@@ -41,9 +43,9 @@ struct Flag {
   const char* option;
 };
 constexpr Flag kFlags[] = {{"run", "duration", "--duration"},       {"run", "seed", "--seed"},
-                           {"run", "threads", "--threads"},         {"mud", "particle_size", "--particle-size"},
-                           {"adaptivity", "adaptive", "--adaptive"}, {"rheology", "rheology", "--rheology"},
-                           {"outputs", "snapshot_interval", "--snapshots"}};
+                           {"run", "threads", "--threads"},         {"mud", "material", "--material"},
+                           {"mud", "particle_size", "--particle-size"}, {"adaptivity", "adaptive", "--adaptive"},
+                           {"rheology", "rheology", "--rheology"},  {"outputs", "snapshot_interval", "--snapshots"}};
 
 // Every MudflowSettings field (mudflow_simulation.hpp, rheology.hpp) as a scenario parameter.
 ParameterTable parameter_table(MudflowOptions& o) {
@@ -64,6 +66,10 @@ ParameterTable parameter_table(MudflowOptions& o) {
             "densities they read are done, while its neighbour list is in the cache; fewer: all densities first; the "
             "layers do not depend on it",
             &s.interleaved_particles);
+  table.add("mud", "material", "",
+            "material preset that sets the rheology, its parameters and the density before the scenario's own keys: " +
+                MudflowMaterials::built_in().name_list(),
+            &o.material);
   table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density);
   table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity);
   table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size);
@@ -93,8 +99,11 @@ ParameterTable parameter_table(MudflowOptions& o) {
             &s.curvature_span);
   auto& r = s.rheology;
   table.add("rheology", "rheology", "", "basal resistance: viscous, coulomb, voellmy or bingham", &o.rheology);
-  table.add("rheology", "friction_factor", "-", "basal Coulomb friction mu = this x the lithology class's friction",
-            &r.friction_factor);
+  table.add("rheology", "friction", "-", "Coulomb friction coefficient mu of the basal resistance (coulomb, voellmy)",
+            &r.friction);
+  table.retire("rheology", "friction_factor",
+               "no longer used: give [rheology] friction, the friction coefficient mu itself (0-1); the lithology no "
+               "longer sets the mud's friction");
   table.add("rheology", "turbulence", "m/s2", "turbulence coefficient xi of Voellmy", &r.turbulence);
   table.add("rheology", "viscosity", "Pa s", "dynamic viscosity eta (viscous and Bingham)", &r.viscosity);
   table.add("rheology", "yield_stress", "Pa", "yield stress tau_y of Bingham", &r.yield_stress);
@@ -136,8 +145,7 @@ class ParameterCheck {
 
  private:
   std::string where(const std::string& section, const std::string& name) const {
-    for (const auto& e : table_.entries()) {
-      if (e.section != section || e.name != name || !e.pinned) continue;
+    if (table_.given_on_command_line(section, name)) {
       for (const Flag& flag : kFlags) {
         if (section == flag.section && name == flag.name) return flag.option;
       }
@@ -154,6 +162,16 @@ bool parse_on_off(const std::string& text) {
   if (text == "on") return true;
   if (text == "off") return false;
   throw InputError("--adaptive " + text + ": use on or off");
+}
+
+// The material preset named by --material, the scenario's [mud] material or the default, under
+// the scenario's own keys and the flags (docs/mudflow.md, "Materials").
+void apply_material(const MudflowOptions& o, ParameterTable& table) {
+  const MudflowMaterials& materials = MudflowMaterials::built_in();
+  const ParameterCheck check(table, o.scenario);
+  check.require(materials.contains(o.material), "mud", "material", o.material,
+                "expected one of " + materials.name_list());
+  materials.apply(o.material, table);
 }
 
 // Every parameter within the range the model is meant for (docs/mudflow.md).
@@ -177,8 +195,8 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
                 "expected 1 or more");
   check.require(s.parallel_check_period == 0 || s.parallel_check_period >= 3, "run", "parallel_check_period",
                 s.parallel_check_period, "expected 0 (always all threads) or 3 or more coarse steps");
-  check.require(s.mud_density >= 1000.0 && s.mud_density <= 3000.0, "mud", "density", s.mud_density,
-                "expected 1000-3000 kg/m3");
+  check.require(s.mud_density >= 100.0 && s.mud_density <= 3000.0, "mud", "density", s.mud_density,
+                "expected 100-3000 kg/m3");
   check.require(s.gravity > 0.0 && s.gravity <= 30.0, "mud", "gravity", s.gravity, "expected 0-30 m/s2");
   check.require(s.particle_size > 0.0, "mud", "particle_size", s.particle_size, "expected a spacing > 0 m");
   check.require(s.coarse_levels <= 8, "adaptivity", "coarse_levels", s.coarse_levels, "expected 0-8");
@@ -194,7 +212,8 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(s.unguarded_step >= 0.0, "time_steps", "unguarded_step", s.unguarded_step, "expected 0 (off) or a step > 0 s");
   check.require(s.curvature_span >= 0.0 && s.curvature_span <= 1000.0, "contact", "curvature_span", s.curvature_span,
                 "expected a length in 0-1000 m");
-  check.require(r.friction_factor >= 0.0, "rheology", "friction_factor", r.friction_factor, "expected a factor >= 0");
+  check.require(r.friction >= 0.0 && r.friction <= 1.0, "rheology", "friction", r.friction,
+                "expected a coefficient in [0, 1]");
   check.require(r.turbulence > 0.0, "rheology", "turbulence", r.turbulence, "expected a coefficient > 0 m/s2");
   check.require(r.viscosity >= 0.0, "rheology", "viscosity", r.viscosity, "expected a viscosity >= 0 Pa s");
   check.require(r.yield_stress >= 0.0, "rheology", "yield_stress", r.yield_stress, "expected a stress >= 0 Pa");
@@ -205,9 +224,7 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(s.entrainment_rate >= 0.0, "entrainment", "rate", s.entrainment_rate, "expected a rate >= 0 1/m");
   check.require(s.arrival_depth > 0.0, "outputs", "arrival_depth", s.arrival_depth, "expected a depth > 0 m");
   check.require(s.map_interval > 0.0, "outputs", "map_interval", s.map_interval, "expected an interval > 0 s");
-  const bool snapshots_flag = std::any_of(table.entries().begin(), table.entries().end(), [](const auto& e) {
-    return e.section == "outputs" && e.name == "snapshot_interval" && e.pinned;
-  });
+  const bool snapshots_flag = table.given_on_command_line("outputs", "snapshot_interval");
   check.require(snapshots_flag ? s.snapshot_interval > 0.0 : s.snapshot_interval >= 0.0, "outputs", "snapshot_interval",
                 s.snapshot_interval, snapshots_flag ? "expected an interval > 0 s" : "expected 0 (none) or an interval > 0 s");
   if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
@@ -219,7 +236,7 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
 std::string scenario_text(const MudflowOptions& o) {
   const auto& s = o.settings;
   std::ostringstream text;
-  text << "mudflow " << o.rheology << ", particle size " << s.particle_size << " m, adaptive "
+  text << "mudflow " << o.material << " (" << o.rheology << "), particle size " << s.particle_size << " m, adaptive "
        << (s.adaptive ? "on" : "off") << ", duration " << s.duration << " s, density " << s.mud_density
        << " kg/m3, seed " << s.seed;
   return text.str();
@@ -323,8 +340,10 @@ void print_summary(const MudflowResult& result, double simulate_seconds, const s
 
 // Resolves and checks the parameters, reads the scene, runs the flow and writes the layer set.
 int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_given) {
-  // The scenario file sets every parameter it names, except those given as flags (pinned).
+  // The scenario file sets every parameter it names, except those given as flags; the material
+  // preset then sets those that neither gives.
   if (!o.scenario.empty()) table.apply_scenario(o.scenario, {});
+  apply_material(o, table);
   if (adaptive_given) o.settings.adaptive = parse_on_off(o.adaptive);
   validate(o, table);
 
@@ -337,16 +356,15 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   const double read_seconds = seconds_since(start);
   for (const auto& note : scene.notes) std::printf("note: %s\n", note.c_str());
   for (const auto& problem : scene.problems) std::printf("problem: %s\n", problem.c_str());
-  std::printf("Mud flow from %zu release cells and %zu points (%s, particle size %g m, adaptive %s) ...\n",
-              scene.release->cell_count(), scene.release->points.size(), o.rheology.c_str(), o.settings.particle_size,
-              o.settings.adaptive ? "on" : "off");
+  std::printf("Mud flow from %zu release cells and %zu points (%s: %s, particle size %g m, adaptive %s) ...\n",
+              scene.release->cell_count(), scene.release->points.size(), o.material.c_str(), o.rheology.c_str(),
+              o.settings.particle_size, o.settings.adaptive ? "on" : "off");
   std::fflush(stdout);
 
   const auto simulate_start = std::chrono::steady_clock::now();
   TerminalProgress progress;
   const Grid<float>* erodible = scene.erodible ? &*scene.erodible : nullptr;
   const MudflowResult result = run_mudflow(ground, *scene.release, erodible, o.settings, &progress);
-  progress.report(1.0, "mud flow");  // a run that ends early (energy, outflow) is done too
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();
@@ -381,6 +399,10 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
   cmd->add_option("--vegetation", o->inputs.vegetation, "Vegetation raster: class codes or deperdition coefficients (1/m)");
   cmd->add_option("--erodible", o->inputs.erodible, "Raster of erodible depth (m) the flow can entrain");
   cmd->add_option("--materials", o->inputs.materials, "Materials table (TOML); default: built-in");
+  auto* material = cmd->add_option("--material", o->material,
+                  "Material preset: " + MudflowMaterials::built_in().name_list() +
+                      "; the scenario's keys and the other flags override its values (docs/mudflow.md)")
+      ->default_val(o->material);
   cmd->add_option("--scenario", o->scenario,
                   "Scenario TOML: [run], [mud], [adaptivity], [time_steps], [contact], [rheology], [deposition], "
                   "[entrainment], [outputs] (see talus params)");
@@ -399,8 +421,8 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
                                   "Threads (default: all cores). With other jobs on the machine, start Talus with "
                                   "OMP_WAIT_POLICY=passive in the environment (docs/performance.md)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
-  cmd->callback([o, table, &action, duration, size, adaptive, rheology, snapshots, seed, threads] {
-    const CLI::Option* given[] = {duration, seed, threads, size, adaptive, rheology, snapshots};
+  cmd->callback([o, table, &action, duration, material, size, adaptive, rheology, snapshots, seed, threads] {
+    const CLI::Option* given[] = {duration, seed, threads, material, size, adaptive, rheology, snapshots};
     static_assert(std::size(kFlags) == std::size(given));
     for (std::size_t k = 0; k < std::size(kFlags); ++k) {
       if (given[k]->count() > 0) table->pin(kFlags[k].section, kFlags[k].name);
@@ -412,7 +434,11 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
 
 nlohmann::json mudflow_parameters() {
   MudflowOptions defaults;
-  return parameter_table(defaults).describe();
+  ParameterTable table = parameter_table(defaults);
+  apply_material(defaults, table);
+  return table.describe();
 }
+
+nlohmann::json mudflow_materials() { return MudflowMaterials::built_in().describe(); }
 
 }  // namespace talus::cli

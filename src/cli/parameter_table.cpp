@@ -1,8 +1,6 @@
 // The parameter table behind scenario files, `talus params` and run.json (DESIGN.md 1).
 #include "parameter_table.hpp"
 
-#include <toml++/toml.h>
-
 #include <algorithm>
 #include <set>
 
@@ -21,10 +19,20 @@ void ParameterTable::add(std::string section, std::string name, std::string unit
   entries_.push_back({std::move(section), std::move(name), std::move(unit), std::move(description), target});
 }
 
+void ParameterTable::retire(std::string section, std::string name, std::string instead) {
+  retired_.push_back({std::move(section), std::move(name), std::move(instead)});
+}
+
 void ParameterTable::pin(const std::string& section, const std::string& name) {
   for (auto& e : entries_) {
-    if (e.section == section && e.name == name) e.pinned = true;
+    if (e.section == section && e.name == name) e.origin = Origin::command_line;
   }
+}
+
+bool ParameterTable::given_on_command_line(const std::string& section, const std::string& name) const {
+  return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) {
+    return e.section == section && e.name == name && e.origin == Origin::command_line;
+  });
 }
 
 nlohmann::json ParameterTable::values() const {
@@ -42,6 +50,48 @@ nlohmann::json ParameterTable::describe() const {
   return out;
 }
 
+void ParameterTable::apply(const toml::table& sections, Origin origin, const std::string& source) {
+  for (const auto& [section_key, section_node] : sections) {
+    const std::string section(section_key.str());
+    const toml::table* section_table = section_node.as_table();
+    const bool known_section = std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.section == section; });
+    if (section_table == nullptr || !known_section) throw InputError(source + ": unknown section [" + section + "]");
+    for (const auto& [key, node] : *section_table) {
+      const std::string where = "[" + section + "] " + std::string(key.str());
+      const auto retired = std::find_if(retired_.begin(), retired_.end(),
+                                        [&](const RetiredKey& r) { return r.section == section && r.name == key.str(); });
+      if (retired != retired_.end()) throw InputError(source + ": " + where + ": " + retired->instead);
+      auto entry = std::find_if(entries_.begin(), entries_.end(),
+                                [&](const Entry& e) { return e.section == section && e.name == key.str(); });
+      if (entry == entries_.end()) throw InputError(source + ": unknown key '" + std::string(key.str()) + "' in [" + section + "]");
+      const bool keep = entry->origin >= origin;
+      std::visit(
+          [&](auto* value) {
+            using T = std::remove_pointer_t<decltype(value)>;
+            if constexpr (std::is_same_v<T, std::string>) {
+              const auto text = node.value<std::string>();
+              if (!text) throw InputError(source + ": " + where + " must be a string");
+              if (!keep) *value = *text;
+            } else if constexpr (std::is_same_v<T, double>) {
+              const auto number = node.value<double>();
+              if (!number) throw InputError(source + ": " + where + " must be a number");
+              if (!keep) *value = *number;
+            } else if constexpr (std::is_same_v<T, bool>) {
+              const auto flag = node.value<bool>();
+              if (!flag) throw InputError(source + ": " + where + " must be true or false");
+              if (!keep) *value = *flag;
+            } else {
+              const auto integer = node.value<std::int64_t>();
+              if (!integer || *integer < 0) throw InputError(source + ": " + where + " must be a non-negative integer");
+              if (!keep) *value = static_cast<T>(*integer);
+            }
+          },
+          entry->target);
+      if (!keep) entry->origin = origin;
+    }
+  }
+}
+
 void ParameterTable::apply_scenario(const std::filesystem::path& scenario, const std::vector<std::string>& ignored_sections) {
   const std::string name = scenario.string() + " (scenario)";
   std::error_code ec;
@@ -52,42 +102,8 @@ void ParameterTable::apply_scenario(const std::filesystem::path& scenario, const
   } catch (const toml::parse_error& e) {
     throw InputError(name + ": line " + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
   }
-  for (const auto& [section_key, section_node] : table) {
-    const std::string section(section_key.str());
-    if (std::find(ignored_sections.begin(), ignored_sections.end(), section) != ignored_sections.end()) continue;
-    const toml::table* section_table = section_node.as_table();
-    const bool known_section = std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.section == section; });
-    if (section_table == nullptr || !known_section) throw InputError(name + ": unknown section [" + section + "]");
-    for (const auto& [key, node] : *section_table) {
-      auto entry = std::find_if(entries_.begin(), entries_.end(),
-                                [&](const Entry& e) { return e.section == section && e.name == key.str(); });
-      if (entry == entries_.end()) throw InputError(name + ": unknown key '" + std::string(key.str()) + "' in [" + section + "]");
-      const std::string where = "[" + section + "] " + std::string(key.str());
-      std::visit(
-          [&](auto* value) {
-            using T = std::remove_pointer_t<decltype(value)>;
-            const bool keep = entry->pinned;
-            if constexpr (std::is_same_v<T, std::string>) {
-              const auto text = node.value<std::string>();
-              if (!text) throw InputError(name + ": " + where + " must be a string");
-              if (!keep) *value = *text;
-            } else if constexpr (std::is_same_v<T, double>) {
-              const auto number = node.value<double>();
-              if (!number) throw InputError(name + ": " + where + " must be a number");
-              if (!keep) *value = *number;
-            } else if constexpr (std::is_same_v<T, bool>) {
-              const auto flag = node.value<bool>();
-              if (!flag) throw InputError(name + ": " + where + " must be true or false");
-              if (!keep) *value = *flag;
-            } else {
-              const auto integer = node.value<std::int64_t>();
-              if (!integer || *integer < 0) throw InputError(name + ": " + where + " must be a non-negative integer");
-              if (!keep) *value = static_cast<T>(*integer);
-            }
-          },
-          entry->target);
-    }
-  }
+  for (const std::string& section : ignored_sections) table.erase(section);
+  apply(table, Origin::scenario, name);
 }
 
 }  // namespace talus::cli

@@ -10,32 +10,48 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <toml++/toml.h>
 
 namespace talus::cli {
 
 class ParameterTable {
  public:
   using Target = std::variant<double*, int*, std::uint64_t*, std::string*, bool*>;
+  // Where a value came from, lowest first. A source sets only the values that came from a lower
+  // one, so a material preset < the scenario file < a command-line flag, whatever the order in
+  // which they are applied.
+  enum class Origin { built_in, material, scenario, command_line };
   struct Entry {
     std::string section, name, unit, description;
     Target target;
-    bool pinned = false;  // given on the command line: a scenario file does not override it
+    Origin origin = Origin::built_in;
   };
 
   void add(std::string section, std::string name, std::string unit, std::string description, Target target);
+  // A key that sources may no longer name: naming it is InputError with `instead`, the line that
+  // says what to give now.
+  void retire(std::string section, std::string name, std::string instead);
   // {section: {name: value}}: the resolved values, for run.json.
   nlohmann::json values() const;
   // [{section, name, unit, description, default}], for `talus params`.
   nlohmann::json describe() const;
-  // Marks an entry as given on the command line, so that the scenario file leaves it alone.
+  // Marks an entry as given on the command line, so that no other source overrides it.
   void pin(const std::string& section, const std::string& name);
-  // Sets the values found in a scenario file's sections, except pinned ones; unknown sections or
-  // keys, and values of the wrong type, are InputError naming the file and the key.
+  bool given_on_command_line(const std::string& section, const std::string& name) const;
+  // Sets the values a TOML table gives by [section] key from `origin`, except those that came
+  // from a higher one; unknown sections or keys, retired keys and values of the wrong type are
+  // InputError naming `source` (e.g. "flow.toml (scenario)") and the key.
+  void apply(const toml::table& sections, Origin origin, const std::string& source);
+  // apply() with a scenario file's sections, except `ignored_sections`.
   void apply_scenario(const std::filesystem::path& scenario, const std::vector<std::string>& ignored_sections);
   const std::vector<Entry>& entries() const { return entries_; }
 
  private:
+  struct RetiredKey {
+    std::string section, name, instead;
+  };
   std::vector<Entry> entries_;
+  std::vector<RetiredKey> retired_;
 };
 
 }  // namespace talus::cli

@@ -10,7 +10,9 @@ void add_params_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("params", "Print every parameter (section, name, unit, meaning, default) as JSON");
   cmd->callback([&action] {
     action = [] {
-      const nlohmann::json all = {{"rockfall", rockfall_parameters()}, {"mudflow", mudflow_parameters()}};
+      const nlohmann::json all = {{"rockfall", rockfall_parameters()},
+                                  {"mudflow", mudflow_parameters()},
+                                  {"mudflow_materials", mudflow_materials()}};
       std::cout << all.dump(2) << '\n';
       return 0;
     };

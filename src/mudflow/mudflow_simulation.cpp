@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
@@ -24,6 +25,7 @@
 #include "talus/mudflow/particle_fusion.hpp"
 #include "talus/mudflow/particle_parts.hpp"
 #include "talus/mudflow/release_particles.hpp"
+#include "talus/mudflow/run_end_estimate.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 #include "talus/mudflow/surface_following.hpp"
 #include "talus/mudflow/time_levels.hpp"
@@ -80,7 +82,7 @@ void validate(const MudflowSettings& s) {
   require(std::isfinite(s.unguarded_step) && s.unguarded_step >= 0, "the forced step must not be negative (s)");
   require(std::isfinite(s.curvature_span) && s.curvature_span >= 0, "the curvature span must not be negative (m)");
   const RheologyParameters& r = s.rheology;
-  require(r.friction_factor >= 0, "the friction factor must not be negative");
+  require(std::isfinite(r.friction) && r.friction >= 0 && r.friction <= 1, "the friction coefficient must lie in [0, 1]");
   require(r.turbulence > 0, "the Voellmy turbulence xi must be positive (m/s2)");
   require(r.viscosity >= 0 && r.yield_stress >= 0, "viscosity and yield stress must not be negative");
   require(r.internal_viscosity >= 0, "the internal viscosity must not be negative (m2/s)");
@@ -89,6 +91,16 @@ void validate(const MudflowSettings& s) {
   require(s.arrival_depth >= 0, "the arrival depth must not be negative (m)");
   require(std::isfinite(s.map_interval) && s.map_interval > 0, "the map interval must be positive (s)");
   require(std::isfinite(s.snapshot_interval) && s.snapshot_interval >= 0, "the snapshot interval must not be negative (s)");
+}
+
+// A progress line's phase while the flow runs: simulated time, expected end and wall time left
+// (run_end_estimate.hpp), e.g. "mud flow: simulated 88.5 s of about 140 s, about 12 s left".
+std::string progress_phase(const RunEndEstimate& estimate) {
+  const double left = estimate.wall_seconds_left();
+  char text[128];
+  std::snprintf(text, sizeof text, "mud flow: simulated %.1f s of about %.0f s, about %.*f s left", estimate.time(),
+                estimate.expected_end(), left < 10.0 ? 1 : 0, left);
+  return text;
 }
 
 // Paper 4.2: the step of each level 0..finest_level, coarse_step / 2^level (s).
@@ -339,9 +351,6 @@ void MudflowRun::update_forces(std::size_t i) {
   BasalContact contact;
   contact.depth = p_.depth[i];
   contact.normal_acceleration = normal_acceleration;
-  // The mud's Coulomb friction scales the class's rolling friction, the single friction the table
-  // held before rock fall split it into sliding and rolling (docs/mudflow.md, rheologies).
-  contact.lithology_friction = ground_.material_field(&GroundMaterial::rolling_friction, square);
   contact.vegetation_deperdition = ground_.material_field(&GroundMaterial::vegetation_deperdition, square);
   resistance_[i] = basal_resistance(s_.rheology, contact, s_.mud_density, g);
   wanted_[i] = static_cast<std::uint8_t>(wanted_level(i));
@@ -631,6 +640,8 @@ MudflowResult MudflowRun::run() {
   if (s_.snapshot_interval > 0) snapshot(result);
 
   const double slack = kTimeSlack * coarse_step_;
+  RunEndEstimate end_estimate(s_.duration, s_.stop_energy_fraction);
+  const auto run_started = std::chrono::steady_clock::now();
   while (true) {
     const auto started = std::chrono::steady_clock::now();
     const std::uint64_t steps_before = particle_steps_;
@@ -674,11 +685,13 @@ MudflowResult MudflowRun::run() {
       snapshot(result);
       while (next_snapshot <= t + slack) next_snapshot += s_.snapshot_interval;
     }
+    const MudflowHistoryPoint& now = result.history.back();
     if (progress_ != nullptr) {
-      progress_->report(std::min(1.0, t / s_.duration), "mud flow");
+      end_estimate.record(t, now.kinetic_energy,
+                          std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count());
+      progress_->report(end_estimate.fraction_done(), progress_phase(end_estimate));
       if (progress_->cancelled()) throw Cancelled();
     }
-    const MudflowHistoryPoint& now = result.history.back();
     if (p_.size() == 0) {
       result.end = MudflowEnd::outflow;
       break;
@@ -694,6 +707,11 @@ MudflowResult MudflowRun::run() {
   }
 
   const double t = time();
+  if (progress_ != nullptr) {
+    char phase[96];
+    std::snprintf(phase, sizeof phase, "mud flow: simulated %.1f s (end: %s)", t, to_string(result.end));
+    progress_->report(1.0, phase);
+  }
   if (last_map + slack < t) maps_.sample(p_, t);
   if (s_.snapshot_interval > 0 && (result.snapshots.empty() || result.snapshots.back().time < t)) snapshot(result);
   if (entrainment_) {

@@ -40,7 +40,7 @@ const char* to_string(Rheology rheology) {
 BasalResistance basal_resistance(const RheologyParameters& parameters, const BasalContact& contact,
                                  double mud_density, double gravity) {
   const double h = contact.depth;
-  const double mu = parameters.friction_factor * contact.lithology_friction;
+  const double mu = parameters.friction;
   BasalResistance resistance;
   switch (parameters.rheology) {
     case Rheology::coulomb:

@@ -2,12 +2,16 @@
 // `talus mudflow` with 1.25 m particles, adaptive (released at 5 m, fission down to 1.25 m where
 // the pressure varies, fusion where the flow is calm, individual time steps) and uniform (every
 // particle 1.25 m, one global step), every other parameter at its default, each run until the
-// flow stops. Their deposit areas must overlap with an IoU of at least 0.9.
+// flow stops (--duration 600: the energy criterion ends both near 290 s). Their deposit areas
+// must overlap with an IoU of at least 0.82.
 //
-// Why 1.25 m: the IoU of two uniform runs that differ only in the seed (the release jitter) is
-// the noise floor of the metric: 0.92 at 1.25 m, but 0.81 at 2.5 m and 0.69 at 5 m
-// (docs/mudflow-speed-accuracy.md), so at coarser sizes no method could pass the 0.9 bar. The
-// two runs take about 70 s and 30 s of one core.
+// Why 1.25 m and 0.82: the IoU of two uniform runs that differ only in the seed (the release
+// jitter) is the noise floor of the metric. With the defaults before issue 20 it was 0.92 at
+// 1.25 m, but 0.81 at 2.5 m and 0.69 at 5 m (docs/mudflow-speed-accuracy.md), and the bar was
+// 0.9. The debris-flow default material (issue 20) spreads the deposit thinner over more than
+// twice the area (about 1810 cells against 740), and the floor at 1.25 m fell to 0.876 (seeds 1
+// and 2, 2026-12-02), below the old bar for any method; adaptive against uniform measured 0.861.
+// The two runs take about 100 s and 30 s of one core.
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -35,7 +39,8 @@ test::ProgramResult run_sample(const fs::path& out, const fs::path& root, const 
   return test::run_talus({"mudflow", "--dem", (sample / "dem.tif").string(), "--lithology",
                           (sample / "lithology.tif").string(), "--vegetation", (sample / "vegetation.tif").string(),
                           "--release", (sample / "mudflow_release.gpkg").string(), "--out", out.string(),
-                          "--particle-size", "1.25", "--adaptive", adaptive, "--seed", "1", "--threads", "1"},
+                          "--particle-size", "1.25", "--adaptive", adaptive, "--seed", "1", "--threads", "1",
+                          "--duration", "600"},
                          root);
 }
 
@@ -60,11 +65,11 @@ TEST(MudflowAdaptiveOverlap, AdaptiveDepositMatchesUniformFinestParticles) {
     both += a && b ? 1 : 0;
     either += a || b ? 1 : 0;
   }
-  ASSERT_GT(either, 500u);  // the deposit covers about 740 cells of 25 m2
+  ASSERT_GT(either, 1000u);  // the deposit covers about 1810 cells of 25 m2
   const double iou = static_cast<double>(both) / static_cast<double>(either);
-  // Issue 5: at least 0.9 (measured 0.917 on 2026-11-22).
-  EXPECT_GE(iou, 0.9) << both << " of " << either << " cells";
-  // The adaptivity does its work: about 3.2 times fewer particle-steps (21 million against 68).
+  // 0.82: 0.94 of the seed-to-seed floor 0.876 (measured 0.861: 1672 of 1942 cells, 2026-12-02).
+  EXPECT_GE(iou, 0.82) << both << " of " << either << " cells";
+  // The adaptivity does its work: about 3.3 times fewer particle-steps (24.5 million against 80.2).
   EXPECT_LT(2.5 * static_cast<double>(particle_steps(root / "adaptive")),
             static_cast<double>(particle_steps(root / "uniform")));
   fs::remove_all(root);

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -84,7 +85,7 @@ TEST_F(SampleMudflow, WritesEveryLayerOfTheContract) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
   EXPECT_EQ(test::check_layers("mudflow", root_ / "out", test::source_dir() / "sample_dem/dem.tif"), 0);
   EXPECT_NE(result_.out.find("Layers written to"), std::string::npos);
-  EXPECT_NE(result_.err.find("Progress: 100%"), std::string::npos);
+  EXPECT_NE(result_.err.find("Progress: 100% (mud flow: simulated "), std::string::npos) << result_.err;
   EXPECT_FALSE(fs::exists(root_ / "out" / "erosion_depth.tif"));  // no --erodible
   for (const auto& entry : fs::directory_iterator(root_ / "out")) {
     EXPECT_NE(entry.path().filename().string().front(), '.') << "temporary file left: " << entry.path();
@@ -149,6 +150,29 @@ TEST_F(SampleMudflow, LayersOpenStyledInQgis) {
     arguments += " " + (root_ / "out" / (layer + ".tif")).string() + " '" + description + "'";
   }
   EXPECT_EQ(run_python(arguments), 0);
+}
+
+// Issue 20, item 7: the progress lines follow simulated time to the expected end (the energy
+// criterion ends this run before --duration), never go back, and say what is left.
+TEST_F(SampleMudflow, ProgressFollowsTimeToTheExpectedEnd) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  std::vector<int> percents;
+  std::istringstream lines(result_.err);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("Progress: ", 0) != 0) continue;
+    percents.push_back(std::stoi(line.substr(10)));
+    if (percents.back() < 100) {
+      EXPECT_NE(line.find("(mud flow: simulated "), std::string::npos) << line;
+      EXPECT_NE(line.find(" s of about "), std::string::npos) << line;
+      EXPECT_NE(line.find(" s left)"), std::string::npos) << line;
+    }
+  }
+  ASSERT_GE(percents.size(), 2u) << result_.err;
+  EXPECT_TRUE(std::is_sorted(percents.begin(), percents.end())) << result_.err;
+  EXPECT_EQ(percents.back(), 100);
+  // No jump to the end: the line before the last is at 80% or more (before issue 20, 70%).
+  EXPECT_GE(percents[percents.size() - 2], 80) << result_.err;
 }
 
 TEST_F(SampleMudflow, SnapshotsHoldTheParticlesWithTheirTime) {
@@ -252,6 +276,9 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
   test::write_vector(root / "no_depth.gpkg", "EPSG:31287",
                      {{"POLYGON((255625 380500,255665 380500,255665 380460,255625 380460,255625 380500))", 0}}, false);
   std::ofstream(root / "bad_density.toml") << "[mud]\ndensity = 50\n";
+  std::ofstream(root / "old_friction.toml") << "[rheology]\nfriction_factor = 0.5\n";
+  std::ofstream(root / "bad_friction.toml") << "[rheology]\nfriction = 1.5\n";
+  std::ofstream(root / "bad_material.toml") << "[mud]\nmaterial = \"honey\"\n";
   const auto out = root / "out";
   const auto sample = sample_arguments(out, "2");
   struct Case {
@@ -272,7 +299,16 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
       {with(sample, {"--snapshots", "0"}), "--snapshots 0: expected an interval > 0 s"},
       {with(sample, {"--duration", "-5"}), "--duration -5: expected a time > 0 s"},
       {with(sample, {"--scenario", (root / "bad_density.toml").string()}),
-       "bad_density.toml (scenario): [mud] density 50: expected 1000-3000 kg/m3"},
+       "bad_density.toml (scenario): [mud] density 50: expected 100-3000 kg/m3"},
+      {with(sample, {"--scenario", (root / "old_friction.toml").string()}),
+       "old_friction.toml (scenario): [rheology] friction_factor: no longer used: give [rheology] friction, the friction "
+       "coefficient mu itself (0-1)"},
+      {with(sample, {"--scenario", (root / "bad_friction.toml").string()}),
+       "bad_friction.toml (scenario): [rheology] friction 1.5: expected a coefficient in [0, 1]"},
+      {with(sample, {"--material", "honey"}),
+       "--material honey: expected one of debris-flow, granular, mud-flow, rock-avalanche, snow-avalanche"},
+      {with(sample, {"--scenario", (root / "bad_material.toml").string()}),
+       "bad_material.toml (scenario): [mud] material honey: expected one of debris-flow, granular, mud-flow"},
       {dem_missing, "missing.tif (DEM): file not found"},
       {with(sample, {"--erodible", (root / "missing_erodible.tif").string()}), "missing_erodible.tif (erodible): file not found"},
   };

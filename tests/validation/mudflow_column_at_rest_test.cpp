@@ -26,7 +26,7 @@ TEST(MudflowColumnAtRest, BasalPressureIsHydrostatic) {
   const auto beyond_floor = [&](double x, double y) { return std::max(0.0, std::max(std::abs(x), std::abs(y)) - half_floor); };
   const GridSpec spec = mudflow_scenes::grid(50, 50, 0.5, -12.5, 12.5);
   const GroundModel ground =
-      mudflow_scenes::ground(spec, [&](double x, double y) { return wall_slope * beyond_floor(x, y); }, 0.5);
+      mudflow_scenes::ground(spec, [&](double x, double y) { return wall_slope * beyond_floor(x, y); });
   const ReleaseSet release =
       mudflow_scenes::release(spec, [&](double x, double y) { return level - k * beyond_floor(x, y); });
 

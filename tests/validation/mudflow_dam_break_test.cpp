@@ -36,13 +36,15 @@ double analytic_mass_front(double phi, double delta, double t) {
   return front - std::pow(t, 2.0 / 3.0) * std::cbrt(27.0 * gz * kQ);
 }
 
-MudflowSettings dam_break_settings(double particle_size, double duration) {
+// The dam breaks' settings: uniform particles of particle_size (m) for duration (s), Coulomb
+// friction coefficient mu (-).
+MudflowSettings dam_break_settings(double particle_size, double duration, double mu) {
   MudflowSettings s;
   s.duration = duration;
   s.particle_size = particle_size;
   s.adaptive = false;
   s.rheology.rheology = Rheology::coulomb;
-  s.rheology.friction_factor = 1.0;
+  s.rheology.friction = mu;
   s.rheology.internal_viscosity = 0.01;  // m2/s: the closed forms have none
   s.stop_energy_fraction = 0.0;
   s.release_thickness = ReleaseThickness::vertical;  // the scene's depths are heights of vertical columns
@@ -59,12 +61,11 @@ TEST(MudflowDamBreak, FrontOnAnInclineFollowsFaccanoniMangeney) {
   // 40 m wide reservoir gives the same fronts to 1%).
   const double phi = std::numbers::pi / 6.0, delta = std::numbers::pi / 9.0;
   const GridSpec spec = mudflow_scenes::grid(66, 22, 1.0, -21.0, 11.0);
-  const GroundModel ground = mudflow_scenes::ground(spec, [&](double x, double) { return 100.0 - std::tan(phi) * x; },
-                                                    std::tan(delta));
+  const GroundModel ground = mudflow_scenes::ground(spec, [&](double x, double) { return 100.0 - std::tan(phi) * x; });
   const ReleaseSet release = mudflow_scenes::release(spec, [&](double x, double y) {
     return (x > -16.0 && x < 0.0 && std::abs(y) < 6.0) ? kH0 / std::cos(phi) : 0.0;
   });
-  const MudflowResult result = run_mudflow(ground, release, nullptr, dam_break_settings(0.2, 4.5), nullptr);
+  const MudflowResult result = run_mudflow(ground, release, nullptr, dam_break_settings(0.2, 4.5, std::tan(delta)), nullptr);
   for (const double t : {3.5, 4.0, 4.5}) {
     const ParticleSnapshot* shot = mudflow_scenes::snapshot_at(result, t);
     ASSERT_NE(shot, nullptr) << t;
@@ -85,10 +86,10 @@ TEST(MudflowDamBreak, FrontOnFlatGroundFollowsRitter) {
   // and the mass front later still.
   const GridSpec spec = mudflow_scenes::grid(320, 40, 0.25, -35.0, 5.0);
   const GroundModel ground =
-      mudflow_scenes::ground(spec, [](double, double y) { return std::abs(y) > 3.0 ? 120.0 : 100.0; }, 0.0);
+      mudflow_scenes::ground(spec, [](double, double y) { return std::abs(y) > 3.0 ? 120.0 : 100.0; });
   const ReleaseSet release = mudflow_scenes::release(
       spec, [](double x, double y) { return (x > -30.0 && x < 0.0 && std::abs(y) < 3.0) ? kH0 : 0.0; });
-  const MudflowResult result = run_mudflow(ground, release, nullptr, dam_break_settings(0.25, 6.0), nullptr);
+  const MudflowResult result = run_mudflow(ground, release, nullptr, dam_break_settings(0.25, 6.0, 0.0), nullptr);
   for (const double t : {4.0, 5.0, 6.0}) {
     const ParticleSnapshot* shot = mudflow_scenes::snapshot_at(result, t);
     ASSERT_NE(shot, nullptr) << t;

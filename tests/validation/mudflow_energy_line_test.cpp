@@ -30,11 +30,11 @@ std::pair<double, double> centre_of_mass(const ParticleSnapshot& shot, double to
 }
 
 TEST(MudflowEnergyLine, CoulombMassStopsOnTheEnergyLine) {
-  // A slope of 0.6 (31 deg) falling 30 m to a flat runout; mu = 0.5 x 0.6 = 0.3.
+  // A slope of 0.6 (31 deg) falling 30 m to a flat runout; mu = 0.3.
   const double slope = 0.6, drop = 30.0, toe = drop / slope, mu = 0.3;
   const GridSpec spec = mudflow_scenes::grid(100, 40, 2.0, -10.0, 40.0);
   const GroundModel ground =
-      mudflow_scenes::ground(spec, [&](double x, double) { return x < toe ? (toe - x) * slope : 0.0; }, 0.6);
+      mudflow_scenes::ground(spec, [&](double x, double) { return x < toe ? (toe - x) * slope : 0.0; });
   const ReleaseSet release = mudflow_scenes::release(
       spec, [](double x, double y) { return (x > 0.0 && x < 8.0 && std::abs(y) < 4.0) ? 2.0 : 0.0; });
   MudflowSettings s;
@@ -44,7 +44,7 @@ TEST(MudflowEnergyLine, CoulombMassStopsOnTheEnergyLine) {
   s.threads = 1;
   s.curvature = false;
   s.rheology.rheology = Rheology::coulomb;
-  s.rheology.friction_factor = 0.5;
+  s.rheology.friction = mu;
   s.rheology.internal_viscosity = 0.1;
   s.stop_energy_fraction = 1e-6;  // run until the mass is at rest
   s.snapshot_interval = s.duration;

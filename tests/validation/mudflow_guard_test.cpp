@@ -15,7 +15,7 @@ namespace {
 
 struct CollapsingColumn {
   GridSpec spec = mudflow_scenes::grid(60, 60, 1.0, -30.0, 30.0);
-  GroundModel ground_model = mudflow_scenes::ground(spec, [](double, double) { return 0.0; }, 0.2);
+  GroundModel ground_model = mudflow_scenes::ground(spec, [](double, double) { return 0.0; });
   ReleaseSet release_set =
       mudflow_scenes::release(spec, [](double x, double y) { return std::max(std::abs(x), std::abs(y)) < 5.0 ? 3.0 : 0.0; });
 
@@ -28,7 +28,7 @@ struct CollapsingColumn {
     s.guard = guard;
     s.unguarded_step = 0.5;  // s
     s.rheology.rheology = Rheology::coulomb;
-    s.rheology.friction_factor = 1.0;
+    s.rheology.friction = 0.2;
     s.stop_energy_fraction = 0.0;
     return run_mudflow(ground_model, release_set, nullptr, s, nullptr);
   }

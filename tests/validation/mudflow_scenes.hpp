@@ -24,9 +24,10 @@ inline GridSpec grid(int width, int height, double cell, double x0, double y0) {
   return spec;
 }
 
-// Ground of elevation z(x, y) with lithology friction `friction` everywhere (no vegetation).
-inline GroundModel ground(const GridSpec& spec, const std::function<double(double, double)>& z, double friction) {
-  return testing_ground::make_ground(spec, z, testing_ground::fast_material(0.0, 0.0, friction));
+// Ground of elevation z(x, y) without vegetation (the mud's basal friction is a rheology setting,
+// not the ground's).
+inline GroundModel ground(const GridSpec& spec, const std::function<double(double, double)>& z) {
+  return testing_ground::make_ground(spec, z, testing_ground::fast_material(0.0, 0.0, 0.0));
 }
 
 // A release of depth(x, y) (m, vertical, per horizontal area) in every cell, at its centre.
@@ -87,9 +88,8 @@ inline double total_energy(const MudflowHistoryPoint& point) {
 // runout well inside the ground (no outflow).
 struct Chute {
   GridSpec spec = grid(100, 50, 1.0, -20.0, 25.0);
-  GroundModel ground_model = ground(
-      spec, [](double x, double) { return std::tan(std::numbers::pi / 6.0) * std::max(0.0, 25.0 - x); },
-      std::tan(std::numbers::pi / 9.0));
+  GroundModel ground_model =
+      ground(spec, [](double x, double) { return std::tan(std::numbers::pi / 6.0) * std::max(0.0, 25.0 - x); });
   ReleaseSet release_set =
       release(spec, [](double x, double y) { return (x > -15.0 && x < 0.0 && std::abs(y) < 6.0) ? 2.0 : 0.0; });
   Grid<float> erodible = erodible_bed(spec);
@@ -111,7 +111,7 @@ struct Chute {
     s.adaptive = adaptive;
     s.threads = threads;
     s.rheology.rheology = Rheology::coulomb;
-    s.rheology.friction_factor = 1.0;
+    s.rheology.friction = std::tan(std::numbers::pi / 9.0);
     s.entrainment_rate = 0.02;
     s.release_thickness = ReleaseThickness::vertical;  // the scene's depths are heights of vertical columns
     return s;

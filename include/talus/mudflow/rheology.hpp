@@ -9,7 +9,7 @@ namespace talus {
 
 enum class Rheology {
   viscous,   // the paper's viscous substance: laminar basal shear 3 eta u / h
-  coulomb,   // basal shear mu N, mu from the lithology
+  coulomb,   // basal shear mu N
   voellmy,   // mu N + rho g u^2 / xi
   bingham,   // yield stress tau_y plus laminar viscous shear
 };
@@ -20,8 +20,9 @@ const char* to_string(Rheology rheology);
 
 struct RheologyParameters {
   Rheology rheology = Rheology::voellmy;
-  double friction_factor = 0.5;    // basal mu = this x the lithology class's friction (-)
-  double turbulence = 500;         // xi of Voellmy (m/s2)
+  // Defaults: the debris-flow material (src/cli/mudflow_materials.toml, docs/mudflow.md "Materials").
+  double friction = 0.2;           // Coulomb friction coefficient mu of coulomb and Voellmy (-)
+  double turbulence = 200;         // xi of Voellmy (m/s2)
   double viscosity = 100;          // dynamic viscosity eta (Pa s): viscous and Bingham
   double yield_stress = 500;       // tau_y of Bingham (Pa)
   double internal_viscosity = 0.5; // kinematic viscosity of the SPH internal friction (m2/s)
@@ -40,7 +41,6 @@ struct BasalResistance {
 struct BasalContact {
   double depth = 0;                   // m: flow thickness normal to the ground (> 0)
   double normal_acceleration = 0;     // m/s2: g cos(theta) + u^2 kappa, the normal stress / (rho0 h), >= 0
-  double lithology_friction = 0;      // -: the ground's friction coefficient there
   double vegetation_deperdition = 0;  // 1/m: the vegetation's c in c |u| u
 };
 

@@ -15,11 +15,10 @@ namespace {
 constexpr double kRho = 2000.0;  // kg/m3
 constexpr double kG = 9.81;      // m/s2
 
-BasalContact contact(double depth, double normal_acceleration, double friction, double vegetation = 0.0) {
+BasalContact contact(double depth, double normal_acceleration, double vegetation = 0.0) {
   BasalContact c;
   c.depth = depth;
   c.normal_acceleration = normal_acceleration;
-  c.lithology_friction = friction;
   c.vegetation_deperdition = vegetation;
   return c;
 }
@@ -38,11 +37,11 @@ TEST(Rheology, NamesRoundTripAndUnknownNamesAreRefused) {
 
 TEST(Rheology, EachLawGivesItsStressOverRhoH) {
   RheologyParameters p;
-  p.friction_factor = 0.5;
+  p.friction = 0.3;
   p.turbulence = 400.0;
   p.viscosity = 50.0;
   p.yield_stress = 300.0;
-  const BasalContact c = contact(2.0, 9.0, 0.6, 0.01);
+  const BasalContact c = contact(2.0, 9.0, 0.01);
   const double rho_h = kRho * 2.0;  // kg/m2
   // Relative tolerance 1e-15: these are the closed forms, evaluated once more.
   p.rheology = Rheology::coulomb;
@@ -99,10 +98,10 @@ TEST(Rheology, VoellmyTerminalSpeedOnASlope) {
   // reaches u = sqrt(xi h (sin - mu cos)): kick and resist with small steps until steady.
   RheologyParameters p;
   p.rheology = Rheology::voellmy;
-  p.friction_factor = 1.0;
-  p.turbulence = 500.0;
   const double theta = 0.5, h = 1.5, mu = 0.2;
-  const BasalResistance r = basal_resistance(p, contact(h, kG * std::cos(theta), mu), kRho, kG);
+  p.friction = mu;
+  p.turbulence = 500.0;
+  const BasalResistance r = basal_resistance(p, contact(h, kG * std::cos(theta)), kRho, kG);
   double u = 0;
   for (int k = 0; k < 200000; ++k) u = resisted_speed(r, u + kG * std::sin(theta) * 1e-3, 1e-3);
   const double expected = std::sqrt(500.0 * h * (std::sin(theta) - mu * std::cos(theta)));
