@@ -14,13 +14,12 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
-#include <numeric>
-#include <queue>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "path_distances.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -41,7 +40,6 @@ struct Field {
   int width = 0, height = 0;
   double cell = 0;  // m
   std::vector<double> values;
-  double at(int col, int row) const { return values[static_cast<std::size_t>(row) * width + col]; }
 };
 
 Field read_field(GDALDataset& dataset) {
@@ -107,47 +105,10 @@ std::vector<char> release_cells(const fs::path& dem) {
 struct Footprint {
   std::vector<char> affected;
   double area_km2 = 0;
-  double runout = 0;        // m: longest path inside the footprint from the release's highest cell
+  double runout = 0;        // m: longest path inside the footprint from the release's highest cell (path_distances.hpp)
   double travel_angle = 0;  // degrees
   double peak_velocity = 0; // m/s
 };
-
-// Shortest paths over the cell centres inside `inside`, with steps to the 16 nearest neighbours
-// (a two-cell step needs the cell it passes inside too); the farthest cell's distance (m) and index.
-std::pair<double, std::size_t> farthest_along_paths(const std::vector<char>& inside, int width, int height,
-                                                    double cell, std::size_t start) {
-  std::vector<double> distance(inside.size(), std::numeric_limits<double>::infinity());
-  using Entry = std::pair<double, std::size_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  distance[start] = 0.0;
-  queue.push({0.0, start});
-  while (!queue.empty()) {
-    const auto [d, k] = queue.top();
-    queue.pop();
-    if (d > distance[k]) continue;
-    const int row = static_cast<int>(k / width), col = static_cast<int>(k % width);
-    for (int dr = -2; dr <= 2; ++dr) {
-      for (int dc = -2; dc <= 2; ++dc) {
-        if ((dr == 0 && dc == 0) || std::gcd(std::abs(dr), std::abs(dc)) != 1) continue;
-        const int r = row + dr, c = col + dc;
-        if (r < 0 || r >= height || c < 0 || c >= width) continue;
-        const std::size_t next = static_cast<std::size_t>(r) * width + c;
-        const std::size_t via = static_cast<std::size_t>(row + dr / 2) * width + (col + dc / 2);
-        if (!inside[next] || !inside[via]) continue;
-        const double nd = d + std::hypot(dr, dc) * cell;
-        if (nd < distance[next]) {
-          distance[next] = nd;
-          queue.push({nd, next});
-        }
-      }
-    }
-  }
-  std::size_t far = start;
-  for (std::size_t k = 0; k < distance.size(); ++k) {
-    if (std::isfinite(distance[k]) && distance[k] > distance[far]) far = k;
-  }
-  return {distance[far], far};
-}
 
 Footprint footprint(const Field& thickness, const Field& velocity, const Field& dem, const std::vector<char>& release) {
   Footprint f;
@@ -167,9 +128,13 @@ Footprint footprint(const Field& thickness, const Field& velocity, const Field& 
       top = k;
     }
   }
-  const auto [runout, far] = farthest_along_paths(inside, thickness.width, thickness.height, thickness.cell, top);
-  f.runout = runout;
-  f.travel_angle = std::atan2(top_z - dem.values[far], runout) * 180.0 / std::numbers::pi;
+  const std::vector<double> along = test::path_distances(inside, thickness.width, thickness.height, thickness.cell, top);
+  std::size_t far = top;
+  for (std::size_t k = 0; k < along.size(); ++k) {
+    if (std::isfinite(along[k]) && along[k] > along[far]) far = k;
+  }
+  f.runout = along[far];
+  f.travel_angle = std::atan2(top_z - dem.values[far], f.runout) * 180.0 / std::numbers::pi;
   return f;
 }
 

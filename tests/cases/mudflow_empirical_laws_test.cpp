@@ -28,17 +28,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <map>
-#include <numeric>
-#include <queue>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "raster_fixtures.hpp"
+#include "path_distances.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -142,45 +140,6 @@ std::vector<char> release_cells(const Dem& dem, const Release& r) {
   return cells;
 }
 
-// Horizontal distance from `start` along the shortest path through passable cells, with the 16
-// moves of a chess king and knight (empirical_laws.py's path_distances).
-std::vector<double> path_distances(const Dem& dem, const std::vector<char>& passable, std::size_t start) {
-  struct Move {
-    int dr, dc;
-    double length;
-  };
-  std::vector<Move> moves;
-  for (int dr = -2; dr <= 2; ++dr) {
-    for (int dc = -2; dc <= 2; ++dc) {
-      if ((dr != 0 || dc != 0) && std::abs(dr) + std::abs(dc) <= 3 && std::gcd(std::abs(dr), std::abs(dc)) == 1) {
-        moves.push_back({dr, dc, dem.cell() * std::hypot(dr, dc)});
-      }
-    }
-  }
-  std::vector<double> distance(passable.size(), std::numeric_limits<double>::infinity());
-  using Entry = std::pair<double, std::size_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  distance[start] = 0.0;
-  queue.push({0.0, start});
-  const auto width = static_cast<std::size_t>(dem.width);
-  while (!queue.empty()) {
-    const auto [d, index] = queue.top();
-    queue.pop();
-    if (d > distance[index]) continue;
-    const int row = static_cast<int>(index / width), col = static_cast<int>(index % width);
-    for (const Move& m : moves) {
-      const int r = row + m.dr, c = col + m.dc;
-      if (r < 0 || r >= dem.height || c < 0 || c >= dem.width) continue;
-      const std::size_t next = static_cast<std::size_t>(r) * width + static_cast<std::size_t>(c);
-      if (passable[next] && d + m.length < distance[next]) {
-        distance[next] = d + m.length;
-        queue.push({distance[next], next});
-      }
-    }
-  }
-  return distance;
-}
-
 // V (run.json's released volume), H (top of the release to the lowest inundated cell the mud
 // reached), L (horizontal distance along the path from the top of the release to the farthest
 // inundated cell) and B (inundated cells outside the release), as README.md's "Method" says.
@@ -204,7 +163,7 @@ Point measure(const Dem& dem, const std::vector<char>& release, const fs::path& 
   for (std::size_t i = 0; i < depth.size(); ++i) {
     passable[i] = static_cast<char>(release[i] || (dem.valid[i] && depth[i] > 0.0f));
   }
-  const std::vector<double> along = path_distances(dem, passable, top);
+  const std::vector<double> along = test::path_distances(passable, dem.width, dem.height, dem.cell(), top);
   Point p;
   p.volume = record.at("volumes_m3").at("released").get<double>();
   double lowest = top_z;

@@ -14,8 +14,8 @@ Definitions (the same as tests/cases/avaalr_com1dfa_test.cpp):
 - affected area: cells whose peak flow thickness exceeds 0.1 m (km2);
 - footprint IoU: intersection over union of the two affected areas;
 - runout along the path: the longest path inside the affected area (and the release) from the
-  release's highest cell, over the cell centres with steps to the 16 nearest neighbours
-  (a step of two cells needs the cell it passes to be inside too);
+  release's highest cell, over the cell centres with the 16 moves of a chess king and knight
+  (tests/support/path_distances.hpp, and empirical_laws.py's path_distances);
 - travel angle: atan(drop from the release's highest cell to the farthest cell / runout);
 - peak thickness and peak velocity: the maxima of the layers over the affected area.
 """
@@ -44,8 +44,8 @@ def read(path):
 
 
 def steps16():
-    """Steps to the 16 nearest neighbours, each with the cell it passes (itself for the 8 nearest)."""
-    return [(dr, dc, math.hypot(dr, dc), (int(dr / 2), int(dc / 2)))
+    """The 16 moves of a chess king and knight, with their lengths in cells."""
+    return [(dr, dc, math.hypot(dr, dc))
             for dr in range(-2, 3) for dc in range(-2, 3)
             if (dr, dc) != (0, 0) and math.gcd(abs(dr), abs(dc)) == 1]
 
@@ -61,11 +61,9 @@ def path_distances(inside, start, cell):
         d, (r, c) = heapq.heappop(queue)
         if d > distance[r, c]:
             continue
-        for dr, dc, length, via in steps:
+        for dr, dc, length in steps:
             rr, cc = r + dr, c + dc
             if not (0 <= rr < rows and 0 <= cc < cols) or not inside[rr, cc]:
-                continue
-            if not inside[r + via[0], c + via[1]]:
                 continue
             nd = d + length * cell
             if nd < distance[rr, cc]:
