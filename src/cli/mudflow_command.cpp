@@ -84,7 +84,10 @@ ParameterTable parameter_table(MudflowOptions& o) {
   table.add("adaptivity", "merge_threshold", "-", "a calm group merges when each member's size x |grad P| / P is below this",
             &s.merge_threshold);
   table.add("adaptivity", "merge_speed", "m/s", "and its members' velocities differ by less than this", &s.merge_speed);
-  table.add("time_steps", "courant", "-", "C in dt = C min(s / (c + |v|), sqrt(s / |a|))", &s.courant);
+  table.add("time_steps", "courant", "-",
+            "C in dt = C min(s / (c + w), sqrt(s / |a|)), w the fastest closing speed of a neighbour", &s.courant);
+  table.add("time_steps", "cells_per_step", "-", "a particle's step crosses at most this many DEM cells",
+            &s.cells_per_step);
   table.add("time_steps", "longest_step", "s", "step of level 0; level k steps are longest_step / 2^k", &s.longest_step);
   table.add("time_steps", "deepest_level", "", "deepest step level", &s.deepest_level);
   table.add("time_steps", "guard", "", "detect blown-up steps and retry them with halved steps", &s.guard);
@@ -205,6 +208,8 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
                 s.merge_threshold, "expected a ratio >= 0 below split_threshold " + number_text(s.split_threshold));
   check.require(s.merge_speed >= 0.0, "adaptivity", "merge_speed", s.merge_speed, "expected a speed >= 0 m/s");
   check.require(s.courant > 0.0 && s.courant <= 1.0, "time_steps", "courant", s.courant, "expected a number in (0, 1]");
+  check.require(s.cells_per_step > 0.0 && s.cells_per_step <= 10.0, "time_steps", "cells_per_step", s.cells_per_step,
+                "expected a number of cells in (0, 10]");
   check.require(s.longest_step > 0.0 && s.longest_step <= 10.0, "time_steps", "longest_step", s.longest_step,
                 "expected a step > 0 s, at most 10 s");
   check.require(s.deepest_level <= 30, "time_steps", "deepest_level", s.deepest_level, "expected 0-30");

@@ -74,6 +74,7 @@ void validate(const MudflowSettings& s) {
   require(s.split_threshold > 0, "the split threshold must be positive");
   require(s.merge_threshold >= 0 && s.merge_speed >= 0, "the merge threshold and speed must not be negative");
   require(s.courant > 0 && s.courant <= 1, "the Courant number must lie in (0, 1]");
+  require(s.cells_per_step > 0 && s.cells_per_step <= 10, "the cells crossed per step must lie in (0, 10]");
   require(std::isfinite(s.longest_step) && s.longest_step > 0, "the longest step must be positive (s)");
   require(s.deepest_level >= 0 && s.deepest_level <= kMostLevels,
           "the deepest level must lie in [0, " + std::to_string(kMostLevels) + "]");
@@ -135,7 +136,8 @@ class MudflowRun {
         level_steps_(level_steps(coarse_step_, finest_level_)),
         column_{settings.mud_density, settings.gravity},
         forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity},
-        criteria_{settings.courant, settings.rheology.internal_viscosity},
+        criteria_{settings.courant, settings.rheology.internal_viscosity,
+                  std::min(ground.spec().cell_width(), ground.spec().cell_height()), settings.cells_per_step},
         largest_cell_(std::max(ground.spec().cell_width(), ground.spec().cell_height())),
         maps_(ground, settings.mud_density, settings.arrival_depth, erodible != nullptr),
         loops_(settings.parallel_check_period) {
@@ -372,7 +374,8 @@ int MudflowRun::wanted_level(std::size_t i) const {
   const double spacing = smoothing_[i] / kSupportPerSpacing;
   const double wave_speed = std::sqrt(s_.gravity * normals_.z[i] * p_.depth[i]);
   const double acceleration = std::sqrt(p_.ax[i] * p_.ax[i] + p_.ay[i] * p_.ay[i] + p_.az[i] * p_.az[i]);
-  const double step = stable_step(spacing, wave_speed, p_.velocity(i).norm(), acceleration, criteria_);
+  const double closing = closing_speed(p_, i, neighbours_[i]);
+  const double step = stable_step(spacing, wave_speed, closing, p_.velocity(i).norm(), acceleration, criteria_);
   return level_for_step(step, coarse_step_, s_.deepest_level) + depth_;
 }
 

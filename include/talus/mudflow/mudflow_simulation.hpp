@@ -45,7 +45,8 @@ struct MudflowSettings {
   double merge_threshold = 0.1;     // a calm group merges when every member's size x |grad P| / P is below this (-)
   double merge_speed = 0.5;         // and its members' velocities differ by less than this (m/s)
   // Time steps (paper 4.2; Courant condition).
-  double courant = 0.3;             // C in dt = C min(s / (c + |v|), sqrt(s / |a|)) (-)
+  double courant = 0.3;             // C in dt = C min(s / (c + w), sqrt(s / |a|)), w the neighbours' closing speed (-)
+  double cells_per_step = 0.5;      // a step crosses at most this many DEM cells (-)
   double longest_step = 0.5;        // s: level-0 step
   int deepest_level = 12;           // steps are longest_step / 2^level, level <= this
   bool guard = true;                // detect blow-up and retry with halved steps

@@ -19,12 +19,22 @@ inline constexpr int kLimiterLevels = 2;
 struct StepCriteria {
   double courant = 0.3;             // C (-)
   double internal_viscosity = 0.5;  // nu (m2/s)
+  double ground_cell = 0;           // m: the DEM's smaller cell side (0: no ground criterion)
+  double cells_per_step = 0.5;      // a step crosses at most this many DEM cells (-)
 };
 
+// The fastest rate (m/s) at which one of particle i's neighbours closes in on it,
+// max_j max(0, -(u_i - u_j) . (x_i - x_j) / |x_i - x_j|) in the horizontal plane of the sums:
+// the relative part of the signal speed of Monaghan (1997), which leaves the step independent
+// of the flow's own speed.
+double closing_speed(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours);
+
 // The longest stable step (s) of a particle of spacing s (m) whose shallow-water wave speed is
-// c = sqrt(g cos(theta) h) (m/s), speed |u| (m/s) and acceleration |a| (m/s2):
-// C min(s / (c + |u|), sqrt(s / |a|)), and the explicit viscous limit s^2 / (8 nu).
-double stable_step(double spacing, double wave_speed, double speed, double acceleration, const StepCriteria& criteria);
+// c = sqrt(g cos(theta) h) (m/s), neighbours close in at w (m/s), speed is |u| (m/s) and
+// acceleration |a| (m/s2): C min(s / (c + w), sqrt(s / |a|)), the explicit viscous limit
+// s^2 / (8 nu), and the ground limit cells_per_step x cell / |u|.
+double stable_step(double spacing, double wave_speed, double closing, double speed, double acceleration,
+                   const StepCriteria& criteria);
 
 // The shallowest level l >= 0 whose step coarse_step / 2^l is at most `step`, at most deepest.
 int level_for_step(double step, double coarse_step, int deepest);

@@ -13,14 +13,46 @@ namespace {
 
 TEST(TimeLevels, StableStepIsTheSmallestOfTheCriteria) {
   const StepCriteria criteria{0.3, 0.0};
-  // Courant: 0.3 x 2 m / (3 + 1) m/s = 0.15 s; force: 0.3 sqrt(2 / 0.5) = 0.6 s.
-  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 1.0, 0.5, criteria), 0.15);
+  // Courant: 0.3 x 2 m / (3 + 1) m/s = 0.15 s with a neighbour closing in at 1 m/s; force:
+  // 0.3 sqrt(2 / 0.5) = 0.6 s.
+  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 1.0, 0.0, 0.5, criteria), 0.15);
   // Force: 0.3 sqrt(2 / 50) = 0.06 s.
-  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 1.0, 50.0, criteria), 0.3 * std::sqrt(2.0 / 50.0));
+  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 1.0, 0.0, 50.0, criteria), 0.3 * std::sqrt(2.0 / 50.0));
   // Viscous limit s^2 / (8 nu) = 4 / 80 = 0.05 s.
-  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 1.0, 0.5, {0.3, 10.0}), 0.05);
+  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 1.0, 0.0, 0.5, {0.3, 10.0}), 0.05);
   // At rest with no force and no viscosity nothing limits the step.
-  EXPECT_TRUE(std::isinf(stable_step(2.0, 0.0, 0.0, 0.0, criteria)));
+  EXPECT_TRUE(std::isinf(stable_step(2.0, 0.0, 0.0, 0.0, 0.0, criteria)));
+}
+
+TEST(TimeLevels, TheFlowsOwnSpeedLimitsTheStepOnlyThroughTheGround) {
+  // Galilean invariance: a flow at 50 m/s whose neighbours keep their distances takes the step
+  // of the same flow at rest, 0.3 x 2 / 3 = 0.2 s, unless the ground limit asks for less.
+  const StepCriteria no_ground{0.3, 0.0};
+  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 0.0, 50.0, 0.0, no_ground), 0.2);
+  // Ground: at most 1.5 cells of 5 m at 50 m/s, 0.15 s.
+  const StepCriteria ground{0.3, 0.0, 5.0, 1.5};
+  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 0.0, 50.0, 0.0, ground), 0.15);
+  EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 0.0, 10.0, 0.0, ground), 0.2);
+}
+
+TEST(TimeLevels, ClosingSpeedIsTheFastestApproachOfANeighbour) {
+  ParticleSet particles;
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  particles.add(1.0, zero, {10.0, 0.0, 0.0}, 1.0);
+  particles.add(1.0, {2.0, 0.0, 0.0}, {7.0, 0.0, 0.0}, 1.0);    // ahead and slower: closes at 3 m/s
+  particles.add(1.0, {-2.0, 0.0, 0.0}, {9.0, 0.0, 0.0}, 1.0);   // behind and slower: recedes
+  particles.add(1.0, {0.0, 2.0, 0.0}, {10.0, -1.0, 0.0}, 1.0);  // beside, drawing near at 1 m/s
+  NeighbourList neighbours{{1, 0.0}, {2, 0.0}, {3, 0.0}};
+  EXPECT_DOUBLE_EQ(closing_speed(particles, 0, neighbours), 3.0);
+  neighbours = {{2, 0.0}};
+  EXPECT_DOUBLE_EQ(closing_speed(particles, 0, neighbours), 0.0);
+  // Moving together at any speed, nothing closes in.
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    particles.vx[i] = 40.0;
+    particles.vy[i] = 0.0;
+  }
+  neighbours = {{1, 0.0}, {2, 0.0}, {3, 0.0}};
+  EXPECT_DOUBLE_EQ(closing_speed(particles, 0, neighbours), 0.0);
 }
 
 TEST(TimeLevels, LevelIsTheShallowestWhoseStepMeetsTheCriterion) {
