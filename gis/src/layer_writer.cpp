@@ -26,14 +26,14 @@ namespace {
 constexpr double kLayerNodata = -9999.0;
 
 // COG with DEFLATE and the floating-point predictor (TIFF predictor 3 for Float32) on the full
-// resolution and on the overviews; AVERAGE overviews skip nodata and keep every reached cell
-// visible (non-zero) when zoomed out; 256-pixel tiles give small layers overviews too.
+// resolution and on the overviews, which are the in-memory dataset's own (fill_overviews);
+// 256-pixel tiles.
+constexpr int kTileSize = 256;
 constexpr std::array kCogOptions{"COMPRESS=DEFLATE",
                                  "PREDICTOR=YES",
                                  "OVERVIEW_COMPRESS=DEFLATE",
                                  "OVERVIEW_PREDICTOR=YES",
-                                 "OVERVIEWS=AUTO",
-                                 "OVERVIEW_RESAMPLING=AVERAGE",
+                                 "OVERVIEWS=FORCE_USE_EXISTING",
                                  "BLOCKSIZE=256",
                                  static_cast<const char*>(nullptr)};
 
@@ -92,6 +92,29 @@ GDALDatasetUniquePtr in_memory(const Grid<float>& values, const LayerDescription
   return dataset;
 }
 
+// The overviews of the layer in memory, each cell the layer's reduction of the cells it covers
+// (layer_overviews.hpp), so that no zoomed-out or printed view lowers a maximum.
+void fill_overviews(GDALDataset& dataset, const Grid<float>& values, const LayerDescription& layer,
+                    const std::filesystem::path& final_path) {
+  std::vector<int> factors = overview_factors(values.spec().width, values.spec().height, kTileSize);
+  if (factors.empty()) return;
+  check(dataset.BuildOverviews("NONE", static_cast<int>(factors.size()), factors.data(), 0, nullptr, nullptr, nullptr),
+        final_path, "creating the overviews");
+  GDALRasterBand* band = dataset.GetRasterBand(1);
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    GDALRasterBand* overview = band->GetOverview(static_cast<int>(k));
+    if (overview == nullptr) gdal_failure(final_path, "creating the overviews");
+    std::vector<float> reduced =
+        reduced_overview(values, factors[k], layer.overview, static_cast<float>(kLayerNodata));
+    const int width = overview->GetXSize(), height = overview->GetYSize();
+    if (static_cast<std::size_t>(width) * static_cast<std::size_t>(height) != reduced.size())
+      gdal_failure(final_path, "sizing the overviews");
+    check(overview->RasterIO(GF_Write, 0, 0, width, height, reduced.data(), width, height, GDT_Float32, 0, 0, nullptr),
+          final_path, "writing the overviews");
+    check(overview->SetNoDataValue(kLayerNodata), final_path, "setting the overviews' nodata");
+  }
+}
+
 void write_text(const std::filesystem::path& path, std::string_view text, const std::filesystem::path& final_path) {
   std::ofstream out(path, std::ios::binary);
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
@@ -140,6 +163,7 @@ void LayerWriter::add(const Grid<float>& values, const LayerDescription& layer) 
   CPLErrorReset();
   try {
     const auto dataset = in_memory(values, layer, metadata_, final_path);
+    fill_overviews(*dataset, values, layer, final_path);
     GDALDatasetUniquePtr written(driver("COG").CreateCopy(tif.c_str(), dataset.get(), FALSE,
                                                           const_cast<char**>(kCogOptions.data()), nullptr, nullptr));
     const bool copied = written != nullptr;

@@ -253,7 +253,8 @@ void write_layers(gis::LayerWriter& writer, const FlowLayers& layers) {
   writer.add(layers.velocity_max, {"velocity_max", "Maximum velocity", "m/s"});
   writer.add(layers.pressure_max, {"pressure_max", "Maximum impact pressure", "kPa"});
   writer.add(layers.deposit_depth, {"deposit_depth", "Deposit depth", "m"});
-  writer.add(layers.arrival_time, {"arrival_time", "Arrival time of the flow", "s"});
+  writer.add(layers.arrival_time,
+             {"arrival_time", "Arrival time of the flow", "s", gis::OverviewReduction::earliest_positive});
   if (layers.erosion_depth) writer.add(*layers.erosion_depth, {"erosion_depth", "Eroded depth", "m"});
 }
 

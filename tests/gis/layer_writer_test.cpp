@@ -160,6 +160,80 @@ TEST(LayerWriter, WritesAFloat32CloudOptimizedGeoTiffOnTheGridWithItsProperties)
   EXPECT_NE(band->GetMetadataItem("STATISTICS_MEAN"), nullptr);
 }
 
+// The overview cell of `factor` at (column, row) as the full-resolution cells it covers reduce:
+// the largest valid value, or the earliest positive one (0 where none is positive).
+float expected_overview_cell(const Grid<float>& grid, int factor, int column, int row, OverviewReduction reduction) {
+  bool any = false;
+  float result = 0.0f;
+  for (int r = row * factor; r < std::min(grid.spec().height, (row + 1) * factor); ++r) {
+    for (int c = column * factor; c < std::min(grid.spec().width, (column + 1) * factor); ++c) {
+      if (!grid.is_valid(grid.index(c, r))) continue;
+      const float value = grid.at(c, r);
+      if (reduction == OverviewReduction::largest) {
+        result = any ? std::max(result, value) : value;
+      } else if (value > 0.0f && (!any || result <= 0.0f || value < result)) {
+        result = value;
+      }
+      any = true;
+    }
+  }
+  return any ? result : kLayerNodata;
+}
+
+// Issue 17, item 4: a zoomed-out or printed view reads the overviews, and an averaged overview
+// lowers a cell's maximum (a printed map dropped a hazard class). Every overview cell of a
+// maximum layer is the largest of the cells it covers; of an arrival time, the earliest arrival.
+TEST(LayerWriter, OverviewsKeepTheMaximumOrTheEarliestArrivalOfTheCellsTheyCover) {
+  const auto folder = test::fresh_folder("layer_writer_overviews");
+  Grid<float> grid = sample_grid(700, 300, epsg_wkt(31287));
+  // Isolated peaks and arrivals among zeros: an average would dilute each to a quarter or less.
+  for (int r = 0; r < 300; ++r)
+    for (int c = 0; c < 700; ++c)
+      if (grid.is_valid(grid.index(c, r))) grid.at(c, r) = (c % 7 == 3 && r % 5 == 1) ? 1000.0f + static_cast<float>(c) : 0.0f;
+  {
+    LayerWriter writer(folder, {});
+    writer.add(grid, {"energy_max", "Maximum kinetic energy", "kJ"});
+    writer.add(grid, {"arrival_time", "Arrival time", "s", OverviewReduction::earliest_positive});
+    writer.commit();
+  }
+  for (const auto& [name, reduction] : {std::pair{"energy_max", OverviewReduction::largest},
+                                        std::pair{"arrival_time", OverviewReduction::earliest_positive}}) {
+    const auto dataset = open_layer(folder / (std::string(name) + ".tif"));
+    ASSERT_TRUE(dataset);
+    GDALRasterBand* band = dataset->GetRasterBand(1);
+    ASSERT_EQ(band->GetOverviewCount(), 2) << name;  // 350 x 150 and 175 x 75: the second fits one tile
+    for (int k = 0; k < band->GetOverviewCount(); ++k) {
+      GDALRasterBand* overview = band->GetOverview(k);
+      const int factor = 2 << k;
+      const int width = overview->GetXSize(), height = overview->GetYSize();
+      ASSERT_EQ(width, (700 + factor - 1) / factor);
+      ASSERT_EQ(height, (300 + factor - 1) / factor);
+      std::vector<float> values(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+      ASSERT_EQ(overview->RasterIO(GF_Read, 0, 0, width, height, values.data(), width, height, GDT_Float32, 0, 0,
+                                   nullptr),
+                CE_None);
+      int peaks = 0;
+      for (int row = 0; row < height; ++row) {
+        for (int column = 0; column < width; ++column) {
+          const float expected = expected_overview_cell(grid, factor, column, row, reduction);
+          ASSERT_EQ(values[static_cast<std::size_t>(row) * width + column], expected)
+              << name << " overview " << k << " cell " << column << ", " << row;
+          if (expected >= 1000.0f) ++peaks;
+        }
+      }
+      EXPECT_GT(peaks, 1000) << name;  // the cells checked hold thousands of isolated peaks
+    }
+  }
+}
+
+TEST(LayerOverviews, FactorsHalveUntilTheCoarsestFitsOneTile) {
+  EXPECT_EQ(overview_factors(700, 300, 256), (std::vector<int>{2, 4}));
+  EXPECT_EQ(overview_factors(417, 915, 256), (std::vector<int>{2, 4}));
+  EXPECT_EQ(overview_factors(512, 100, 256), (std::vector<int>{2}));
+  EXPECT_TRUE(overview_factors(256, 256, 256).empty());
+  EXPECT_TRUE(overview_factors(1, 1, 256).empty());
+}
+
 TEST(LayerWriter, WritesALayerWithoutCrsOrValidCellsWithoutStatistics) {
   const auto folder = test::fresh_folder("layer_writer_empty");
   auto grid = sample_grid(40, 30, "");

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "talus/core/grid.hpp"
+#include "talus/gis/layer_overviews.hpp"
 
 namespace talus::gis {
 
@@ -18,6 +19,7 @@ struct LayerDescription {
   std::string name;          // file stem, also the QML style's name in gis/styles
   std::string description;   // band description, e.g. "Reach probability"
   std::string unit;          // band unit, e.g. "kJ"; empty for counts and probabilities
+  OverviewReduction overview = OverviewReduction::largest;  // how a zoomed-out cell sums up its cells
 };
 
 // Writes a set of layers into one folder as a unit: each layer goes to a temporary name and
