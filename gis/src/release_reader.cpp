@@ -38,7 +38,8 @@ std::size_t drop_cells_outside(Grid<float>& depth, const Grid<double>& dem) {
   return outside;
 }
 
-ReleaseSet release_from_raster(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs) {
+ReleaseSet release_from_raster(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs,
+                               const ReleaseDepthSource& depth) {
   const std::string name = describe_input(path, "release");
   const AlignedRaster aligned = align_raster(path, "release", dem.spec(), ValueKind::classes, crs);
   ReleaseSet release;
@@ -46,7 +47,8 @@ ReleaseSet release_from_raster(const std::filesystem::path& path, const Grid<dou
   spec.nodata = 0.0;
   release.depth = Grid<float>(spec, 0.0f);
   for (std::size_t i = 0; i < aligned.values.size(); ++i) {
-    if (aligned.values.is_valid(i) && aligned.values[i] != 0.0) release.depth[i] = static_cast<float>(std::abs(aligned.values[i]));
+    if (!aligned.values.is_valid(i) || aligned.values[i] == 0.0) continue;
+    release.depth[i] = static_cast<float>(depth.uniform ? *depth.uniform : std::abs(aligned.values[i]));
   }
   if (release.cell_count() == 0) throw InputError(name + ": has no release cell (every value is 0 or nodata): empty release");
   drop_cells_outside(release.depth, dem);
@@ -159,7 +161,8 @@ void burn_polygons(const std::vector<ReleasePolygon>& polygons, const Grid<doubl
 }
 
 ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path& path, const Grid<double>& dem,
-                               const CrsOption& crs, const std::optional<Rock>& run_rock) {
+                               const CrsOption& crs, const std::optional<Rock>& run_rock,
+                               const ReleaseDepthSource& depth_source) {
   const std::string name = describe_input(path, "release");
   std::vector<ReleasePoint> points;
   std::vector<ReleasePolygon> polygons;
@@ -167,7 +170,7 @@ ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path
   const bool several_layers = dataset.GetLayerCount() > 1;
   for (OGRLayer* layer : dataset.GetLayers()) {
     const auto transform = transform_to_dem(*layer, dem.spec(), crs);
-    const int depth_field = layer->GetLayerDefn()->GetFieldIndex("depth");
+    const int depth_field = layer->GetLayerDefn()->GetFieldIndex(depth_source.field.c_str());
     const std::string layer_name = several_layers ? std::string(layer->GetName()) : std::string();
     std::size_t place = 0;
     for (auto& feature : *layer) {
@@ -179,7 +182,9 @@ ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path
       if (transform && geometry->transform(transform.get()) != OGRERR_NONE) {
         throw InputError(name + ": a geometry cannot be transformed to the DEM's CRS");
       }
-      const double depth = depth_field >= 0 ? std::abs(feature->GetFieldAsDouble(depth_field)) : 0.0;
+      const double depth = depth_source.uniform    ? *depth_source.uniform
+                           : depth_field >= 0     ? std::abs(feature->GetFieldAsDouble(depth_field))
+                                                  : 0.0;
       const ReleaseConditions conditions =
           run_rock ? read_release_conditions(*feature, *run_rock, feature_name(name, *feature, place, layer_name))
                    : ReleaseConditions{};
@@ -213,7 +218,7 @@ ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path
 }  // namespace
 
 ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs,
-                        const std::optional<Rock>& run_rock) {
+                        const std::optional<Rock>& run_rock, const ReleaseDepthSource& depth) {
   ensure_gdal_ready();
   const std::string name = describe_input(path, "release");
   std::error_code ec;
@@ -221,10 +226,10 @@ ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& d
   CPLErrorReset();
   GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY));
   if (!dataset) throw InputError(name + ": not a raster or vector layer GDAL can read");
-  if (dataset->GetLayerCount() > 0) return release_from_vector(*dataset, path, dem, crs, run_rock);
+  if (dataset->GetLayerCount() > 0) return release_from_vector(*dataset, path, dem, crs, run_rock, depth);
   if (dataset->GetRasterCount() > 0) {
     dataset.reset();
-    ReleaseSet release = release_from_raster(path, dem, crs);
+    ReleaseSet release = release_from_raster(path, dem, crs, depth);
     if (run_rock) add_raster_conditions(path, dem.spec(), crs, *run_rock, release);
     return release;
   }

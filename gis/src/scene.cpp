@@ -3,6 +3,7 @@
 
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -128,26 +129,38 @@ void load_vegetation(Scene& scene, const CrsOption& crs) {
   }
 }
 
-// Mud flow releases the depth given per feature (DESIGN.md section 3, --release): every layer
-// of a vector release needs a `depth` attribute, and every feature a non-zero value in it. A
-// raster release carries its depths in its values and passes.
-void require_release_depths(const std::filesystem::path& path) {
+// Mud flow releases the depth given per feature (DESIGN.md section 3, --release; docs/inputs.md,
+// "Release depth"): every layer of a vector release needs the depth attribute, and every
+// feature a non-zero value in it. A raster release carries its depths in its values; one whose
+// release cells all hold 1 is a mask, refused. With a uniform depth (--depth) nothing is needed.
+void require_release_depths(const std::filesystem::path& path, const ReleaseDepthSource& source,
+                            const ReleaseSet& release) {
+  if (source.uniform) return;
   const std::string name = describe_input(path, "release");
   GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  if (!dataset) return;
+  if (!dataset) {
+    const bool mask = std::all_of(release.depth.values().begin(), release.depth.values().end(),
+                                  [](float depth) { return depth == 0.0f || depth == 1.0f; });
+    if (mask) {
+      throw InputError(name + ": holds only 0 and 1, a mask, not depths; give the release depth with --depth M "
+                              "(m), or a raster of depths (m)");
+    }
+    return;
+  }
   for (OGRLayer* layer : dataset->GetLayers()) {
     const std::string layer_name = layer->GetName();
-    const int depth_field = layer->GetLayerDefn()->GetFieldIndex("depth");
+    const int depth_field = layer->GetLayerDefn()->GetFieldIndex(source.field.c_str());
     if (depth_field < 0) {
-      throw InputError(name + ": layer '" + layer_name +
-                       "' has no `depth` attribute; a mud-flow release needs the release depth (m) of each polygon or point");
+      throw InputError(name + ": layer '" + layer_name + "' has no `" + source.field +
+                       "` attribute; a mud-flow release needs the release depth (m) of each polygon or point: name "
+                       "its attribute with --depth-field NAME, or give one depth with --depth M");
     }
     for (auto& feature : *layer) {
       const OGRGeometry* geometry = feature->GetGeometryRef();
       if (geometry == nullptr || geometry->IsEmpty()) continue;
       if (!feature->IsFieldSetAndNotNull(depth_field) || feature->GetFieldAsDouble(depth_field) == 0.0) {
         throw InputError(name + ": feature " + std::to_string(feature->GetFID()) + " of layer '" + layer_name +
-                         "' has no release depth (`depth` is empty or 0 m)");
+                         "' has no release depth (`" + source.field + "` is empty or 0 m)");
       }
     }
   }
@@ -224,8 +237,8 @@ Scene load_scene(const SceneInputs& inputs) {
   }
   load_vegetation(scene, crs);
   if (!inputs.release.empty()) {
-    scene.release = read_release(inputs.release, dem, crs, inputs.run_rock);
-    if (inputs.release_needs_depth) require_release_depths(inputs.release);
+    scene.release = read_release(inputs.release, dem, crs, inputs.run_rock, inputs.release_depth);
+    if (inputs.release_needs_depth) require_release_depths(inputs.release, inputs.release_depth, *scene.release);
   }
   if (!inputs.erodible.empty()) scene.erodible = load_erodible(scene, crs);
   return scene;

@@ -31,6 +31,8 @@ struct MudflowOptions {
   std::string rheology = to_string(RheologyParameters{}.rheology);
   std::string adaptive = "on";  // --adaptive on|off, into settings.adaptive
   std::string release_thickness = to_string(ReleaseThickness::normal);  // into settings.release_thickness
+  double release_depth = 0;            // m: --depth, [mud] release_depth; 0: the release file's depths
+  std::string depth_field = "depth";   // --depth-field, [mud] depth_field
   MudflowSettings settings;
   std::vector<std::string> command_line;
 };
@@ -45,7 +47,8 @@ struct Flag {
 constexpr Flag kFlags[] = {{"run", "duration", "--duration"},       {"run", "seed", "--seed"},
                            {"run", "threads", "--threads"},         {"mud", "material", "--material"},
                            {"mud", "particle_size", "--particle-size"}, {"adaptivity", "adaptive", "--adaptive"},
-                           {"rheology", "rheology", "--rheology"},  {"outputs", "snapshot_interval", "--snapshots"}};
+                           {"rheology", "rheology", "--rheology"},  {"outputs", "snapshot_interval", "--snapshots"},
+                           {"mud", "release_depth", "--depth"},     {"mud", "depth_field", "--depth-field"}};
 
 // Every MudflowSettings field (mudflow_simulation.hpp, rheology.hpp) as a scenario parameter.
 ParameterTable parameter_table(MudflowOptions& o) {
@@ -76,6 +79,12 @@ ParameterTable parameter_table(MudflowOptions& o) {
   table.add("mud", "release_thickness", "",
             "how a release depth is measured: normal (to the ground, the thin-layer convention) or vertical",
             &o.release_thickness);
+  table.add("mud", "release_depth", "m",
+            "one release depth for every release cell, polygon and point, whatever the release file holds (0: the "
+            "file's depths)",
+            &o.release_depth);
+  table.add("mud", "depth_field", "", "the attribute of a vector release that holds each feature's depth (m)",
+            &o.depth_field);
   table.add("adaptivity", "adaptive", "", "particle fission and fusion and individual time steps (paper 4.2)", &s.adaptive);
   table.add("adaptivity", "coarse_levels", "",
             "particle sizes are particle_size x 2^k, k = 0..coarse_levels; the release uses the coarsest", &s.coarse_levels);
@@ -189,6 +198,13 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(o.release_thickness == "normal" || o.release_thickness == "vertical", "mud", "release_thickness",
                 o.release_thickness, "use normal or vertical");
   o.settings.release_thickness = parse_release_thickness(o.release_thickness);
+  check.require(o.release_depth == 0.0 || (o.release_depth >= 0.01 && o.release_depth <= 100.0), "mud", "release_depth",
+                o.release_depth, "expected 0 (the release file's depths) or a depth of 0.01-100 m");
+  check.require(!o.depth_field.empty(), "mud", "depth_field", o.depth_field, "expected an attribute name");
+  check.require(o.release_depth == 0.0 || o.depth_field == "depth", "mud", "depth_field", o.depth_field,
+                "give either a depth attribute or one release depth, not both");
+  o.inputs.release_depth.field = o.depth_field;
+  if (o.release_depth > 0.0) o.inputs.release_depth.uniform = o.release_depth;
   check.require(s.duration > 0.0 && s.duration <= 86400.0, "run", "duration", s.duration, "expected a time > 0 s, at most a day");
   check.require(s.stop_energy_fraction >= 0.0 && s.stop_energy_fraction < 1.0, "run", "stop_energy_fraction",
                 s.stop_energy_fraction, "expected a fraction in [0, 1)");
@@ -398,7 +414,8 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
   CLI::App* cmd = app.add_subcommand("mudflow", "Adaptive smoothed-particle mud flow and its hazard layers");
   cmd->add_option("--dem", o->inputs.dem, "DEM raster (elevations in metres)")->required();
   cmd->add_option("--release", o->inputs.release,
-                  "Release depth raster (m; negative values count as depths) or polygons/points with a `depth` attribute (m)")
+                  "Release depth raster (m; negative values count as depths) or polygons/points with a `depth` attribute "
+                  "(m; see --depth-field and --depth)")
       ->required();
   cmd->add_option("--out", o->out, "Output folder for the layers")->required();
   cmd->add_option("--lithology", o->inputs.lithology, "Lithology class raster");
@@ -423,12 +440,18 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
   auto* snapshots = cmd->add_option("--snapshots", o->settings.snapshot_interval,
                                     "Write particles.gpkg with the particles every SECONDS of simulated time");
   auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(defaults.seed);
+  auto* depth = cmd->add_option("--depth", o->release_depth,
+                                "One release depth (m) for every release cell, polygon and point: makes a 0/1 mask "
+                                "or a layer without depths a release");
+  auto* depth_field = cmd->add_option("--depth-field", o->depth_field,
+                                      "Attribute of a vector release holding each feature's depth (m); default depth");
   auto* threads = cmd->add_option("--threads", o->settings.threads,
                                   "Threads (default: all cores). With other jobs on the machine, start Talus with "
                                   "OMP_WAIT_POLICY=passive in the environment (docs/performance.md)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
-  cmd->callback([o, table, &action, duration, material, size, adaptive, rheology, snapshots, seed, threads] {
-    const CLI::Option* given[] = {duration, seed, threads, material, size, adaptive, rheology, snapshots};
+  cmd->callback([o, table, &action, duration, material, size, adaptive, rheology, snapshots, seed, threads, depth,
+                 depth_field] {
+    const CLI::Option* given[] = {duration, seed, threads, material, size, adaptive, rheology, snapshots, depth, depth_field};
     static_assert(std::size(kFlags) == std::size(given));
     for (std::size_t k = 0; k < std::size(kFlags); ++k) {
       if (given[k]->count() > 0) table->pin(kFlags[k].section, kFlags[k].name);

@@ -44,6 +44,18 @@ std::vector<std::string> with(std::vector<std::string> arguments, const std::vec
   return arguments;
 }
 
+// A raster on the sample DEM's grid (EPSG:31287, 5 m cells, 260 x 400).
+test::RasterFixture sample_grid_fixture() {
+  test::RasterFixture grid;
+  grid.width = 260;
+  grid.height = 400;
+  grid.x0 = 255302.0828;
+  grid.y0 = 380605.9942;
+  grid.cell = 5.0;
+  grid.crs = "EPSG:31287";
+  return grid;
+}
+
 int run_python(const std::string& arguments) { return std::system(("/usr/bin/python3 " + arguments).c_str()); }
 
 nlohmann::json read_json(const fs::path& path) {
@@ -220,13 +232,7 @@ TEST(MudflowErosion, EntrainsFromTheErodibleRaster) {
   const auto plain = test::run_talus(sample_arguments(root / "plain", "1"), root);
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   const auto path = test::read_band(root / "plain" / "flow_depth_max.tif");
-  test::RasterFixture gully;  // the sample DEM's grid
-  gully.width = 260;
-  gully.height = 400;
-  gully.x0 = 255302.0828;
-  gully.y0 = 380605.9942;
-  gully.cell = 5.0;
-  gully.crs = "EPSG:31287";
+  test::RasterFixture gully = sample_grid_fixture();
   gully.value = [&](int c, int r) { return path[static_cast<std::size_t>(r * 260 + c)] > 0.0f ? 0.5 : 0.0; };
   test::write_raster(root / "erodible.tif", gully);
 
@@ -271,6 +277,60 @@ TEST(MudflowStHelens, WritesEveryLayerInLocalCoordinates) {
 }
 
 // Bad inputs: exit code 2, one line on stderr naming the problem, nothing written.
+// Issue 17, item 7: a 0/1 mask used as a mud-flow release used to become 1 m of mud. It is
+// refused unless --depth gives the depth; --depth-field names the attribute of a vector release
+// (AvaFrame's `thickness`), and --depth replaces whatever depth the file holds.
+TEST(MudflowReleaseDepth, AMaskNeedsADepthAndTheDepthFieldNamesTheAttribute) {
+  const auto root = test::fresh_folder("mudflow_release_depth");
+  test::RasterFixture mask = sample_grid_fixture();  // 1 on the gully release's 9 x 9 cells
+  mask.integer = true;
+  mask.nodata = -1;
+  mask.value = [](int col, int row) { return (col >= 64 && col <= 72 && row >= 21 && row <= 29) ? 1.0 : 0.0; };
+  test::write_raster(root / "mask.tif", mask);
+  const std::string polygon = "POLYGON((255625 380500,255665 380500,255665 380460,255625 380460,255625 380500))";
+  test::write_layer(root / "thickness.gpkg", "EPSG:31287", {{"thickness"}}, {{polygon, {"1.5"}}});
+  test::write_vector(root / "depth.gpkg", "EPSG:31287", {{polygon, 1.5}}, true);
+
+  const auto run = [&](const std::string& release, const std::string& out, const std::vector<std::string>& more) {
+    auto arguments = with(sample_arguments(root / out, "2"), {"--duration", "2"});
+    *(std::find(arguments.begin(), arguments.end(), "--release") + 1) = (root / release).string();
+    return test::run_talus(with(arguments, more), root);
+  };
+  const auto released = [&](const std::string& out) {
+    return read_json(root / out / "run.json")["volumes_m3"]["released"].get<double>();
+  };
+
+  const auto refused_mask = run("mask.tif", "mask_refused", {});
+  EXPECT_EQ(refused_mask.exit_code, 2);
+  EXPECT_EQ(refused_mask.err,
+            "talus: error: " + (root / "mask.tif").string() +
+                " (release): holds only 0 and 1, a mask, not depths; give the release depth with --depth M (m), or a "
+                "raster of depths (m)\n");
+  EXPECT_FALSE(fs::exists(root / "mask_refused"));
+  ASSERT_EQ(run("mask.tif", "mask_1.5", {"--depth", "1.5"}).exit_code, 0);
+  ASSERT_EQ(run("mask.tif", "mask_3", {"--depth", "3"}).exit_code, 0);
+  EXPECT_GT(released("mask_1.5"), 81 * 25.0 * 1.5);  // 81 cells of 25 m2, thicker than 1.5 m on the slope
+  EXPECT_NEAR(released("mask_3") / released("mask_1.5"), 2.0, 1e-9);
+
+  const auto refused_field = run("thickness.gpkg", "thickness_refused", {});
+  EXPECT_EQ(refused_field.exit_code, 2);
+  EXPECT_NE(refused_field.err.find("(release): layer 'release' has no `depth` attribute; a mud-flow release needs the "
+                                   "release depth (m) of each polygon or point: name its attribute with --depth-field "
+                                   "NAME, or give one depth with --depth M"),
+            std::string::npos)
+      << refused_field.err;
+  ASSERT_EQ(run("thickness.gpkg", "thickness", {"--depth-field", "thickness"}).exit_code, 0);
+  ASSERT_EQ(run("depth.gpkg", "depth", {}).exit_code, 0);
+  ASSERT_EQ(run("thickness.gpkg", "uniform", {"--depth", "1.5"}).exit_code, 0);
+  EXPECT_EQ(released("thickness"), released("depth"));
+  EXPECT_EQ(released("uniform"), released("depth"));
+  EXPECT_EQ(read_json(root / "thickness" / "run.json")["parameters"]["mud"]["depth_field"], "thickness");
+
+  const auto both = run("thickness.gpkg", "both", {"--depth", "1.5", "--depth-field", "thickness"});
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_EQ(both.err, "talus: error: --depth-field thickness: give either a depth attribute or one release depth, not both\n");
+}
+
 TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
   const auto root = test::fresh_folder("mudflow_bad");
   test::write_vector(root / "no_depth.gpkg", "EPSG:31287",
@@ -311,6 +371,9 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
        "bad_material.toml (scenario): [mud] material honey: expected one of debris-flow, granular, mud-flow"},
       {dem_missing, "missing.tif (DEM): file not found"},
       {with(sample, {"--erodible", (root / "missing_erodible.tif").string()}), "missing_erodible.tif (erodible): file not found"},
+      {with(sample, {"--depth", "0.0001"}), "--depth 0.0001: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
+      {with(sample, {"--depth", "nan"}), "--depth nan: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
+      {with(sample, {"--depth", "500"}), "--depth 500: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
   };
   for (const Case& c : cases) {
     const auto result = test::run_talus(c.arguments, root);

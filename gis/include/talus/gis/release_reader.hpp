@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "talus/core/release.hpp"
 #include "talus/gis/crs_option.hpp"
@@ -14,11 +15,19 @@
 
 namespace talus::gis {
 
+// Where a release's depth (m) comes from (issue 17, item 7; docs/inputs.md, "Release depth"):
+// the vector features' attribute `field`, the raster's values, or, with `uniform`, that depth
+// on every release cell and feature whatever the file holds.
+struct ReleaseDepthSource {
+  std::string field = "depth";
+  std::optional<double> uniform;  // m, > 0
+};
+
 // With `run_rock` (rock fall: the run's rock), each feature's rock-fall attributes become its
 // release conditions; without it they are not read. Throws InputError naming the file when it
 // is unreadable, empty, of an unsupported geometry, lies outside the DEM's valid area, or when
 // a feature's attribute is out of range (naming the feature and the field).
 ReleaseSet read_release(const std::filesystem::path& path, const Grid<double>& dem, const CrsOption& crs,
-                        const std::optional<Rock>& run_rock = std::nullopt);
+                        const std::optional<Rock>& run_rock = std::nullopt, const ReleaseDepthSource& depth = {});
 
 }  // namespace talus::gis

@@ -11,6 +11,7 @@
 #include "talus/ground/ground_model.hpp"
 #include "talus/ground/materials.hpp"
 #include "talus/gis/dem_reader.hpp"
+#include "talus/gis/release_reader.hpp"
 #include "talus/rockfall/rock.hpp"
 
 namespace talus::gis {
@@ -23,9 +24,12 @@ struct SceneInputs {
   std::filesystem::path erodible;    // empty: no erodible material (mud flow, --erodible)
   std::filesystem::path materials;   // empty: the built-in table
   std::string crs;                   // the --crs text, empty for the files' own
-  // Mud flow: every polygon or point of a vector release must carry a non-zero `depth` (m); a
-  // layer without the attribute is refused instead of releasing the default 1 m.
+  // Mud flow: every polygon or point of a vector release must carry a non-zero depth (m) in the
+  // attribute release_depth.field, and a raster release must hold depths, not a 0/1 mask,
+  // unless release_depth.uniform gives one depth for all; a layer without the attribute is
+  // refused instead of releasing the default 1 m.
   bool release_needs_depth = false;
+  ReleaseDepthSource release_depth;
   // Rock fall: the run's rock; the release features' rock-fall attributes (shape, block_size,
   // density or mass, vx, vy, vz, release_height) are read and checked against it. Empty: they
   // are not read (mud flow, info).
