@@ -85,7 +85,8 @@ OGRLayer& create_vector_layer(GDALDataset& dataset, const std::filesystem::path&
   }
   const std::string identifier = std::string("IDENTIFIER=") + spec.identifier;
   const std::string description = std::string("DESCRIPTION=") + spec.description;
-  const char* const options[] = {identifier.c_str(), description.c_str(), nullptr};
+  const char* const options[] = {identifier.c_str(), description.c_str(),
+                                 spec.spatial_index ? "SPATIAL_INDEX=YES" : "SPATIAL_INDEX=NO", nullptr};
   OGRLayer* layer = dataset.CreateLayer(spec.name, &srs, spec.geometry, const_cast<char**>(options));
   if (layer == nullptr) write_failure(path, "creating the layer");
   for (const VectorField& field : spec.fields) {

@@ -24,6 +24,7 @@ struct ReleasePolygon {
   std::unique_ptr<OGRGeometry> geometry;  // in the DEM's CRS
   double depth;                           // m, > 0
   ReleaseConditions conditions;           // rock fall: what the polygon's attributes give
+  std::int64_t feature_id;                // FID of its feature
 };
 
 // Keeps release cells on valid DEM cells; returns how many fell outside.
@@ -70,24 +71,24 @@ std::unique_ptr<OGRCoordinateTransformation> transform_to_dem(OGRLayer& layer, c
 
 // Splits a geometry into release points and polygons, each with the feature's depth and
 // conditions; lines are refused.
-void collect(const OGRGeometry& geometry, double depth, const ReleaseConditions& conditions,
+void collect(const OGRGeometry& geometry, double depth, const ReleaseConditions& conditions, std::int64_t feature_id,
              std::vector<ReleasePoint>& points, std::vector<ReleasePolygon>& polygons, const std::string& name) {
   switch (wkbFlatten(geometry.getGeometryType())) {
     case wkbPoint: {
       const auto& p = *geometry.toPoint();
-      points.push_back({p.getX(), p.getY(), depth, conditions});
+      points.push_back({p.getX(), p.getY(), depth, conditions, feature_id});
       break;
     }
     case wkbPolygon:
     case wkbCurvePolygon:
-      polygons.push_back({std::unique_ptr<OGRGeometry>(geometry.clone()), depth > 0 ? depth : 1.0, conditions});
+      polygons.push_back({std::unique_ptr<OGRGeometry>(geometry.clone()), depth > 0 ? depth : 1.0, conditions, feature_id});
       break;
     case wkbMultiPoint:
     case wkbMultiPolygon:
     case wkbGeometryCollection:
     case wkbMultiSurface:
       for (const OGRGeometry* part : *geometry.toGeometryCollection()) {
-        collect(*part, depth, conditions, points, polygons, name);
+        collect(*part, depth, conditions, feature_id, points, polygons, name);
       }
       break;
     default:
@@ -148,8 +149,12 @@ std::string feature_name(const std::string& name, const OGRFeature& feature, std
 void burn_polygons(const std::vector<ReleasePolygon>& polygons, const Grid<double>& dem, ReleaseSet& release,
                    const std::string& name) {
   Grid<int> polygon_of_cell = rasterize(polygons, release.depth.spec(), name);
+  release.feature_of_cell = Grid<std::int64_t>(release.depth.spec(), kNoReleaseFeature);
   for (std::size_t i = 0; i < polygon_of_cell.size(); ++i) {
-    if (polygon_of_cell[i] > 0) release.depth[i] = static_cast<float>(polygons[polygon_of_cell[i] - 1].depth);
+    if (polygon_of_cell[i] <= 0) continue;
+    const ReleasePolygon& polygon = polygons[static_cast<std::size_t>(polygon_of_cell[i] - 1)];
+    release.depth[i] = static_cast<float>(polygon.depth);
+    release.feature_of_cell[i] = polygon.feature_id;
   }
   drop_cells_outside(release.depth, dem);
   if (release.cell_count() == 0) throw InputError(name + ": its polygons lie outside the DEM's valid area");
@@ -188,7 +193,7 @@ ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path
       const ReleaseConditions conditions =
           run_rock ? read_release_conditions(*feature, *run_rock, feature_name(name, *feature, place, layer_name))
                    : ReleaseConditions{};
-      collect(*geometry, depth, conditions, points, polygons, name);
+      collect(*geometry, depth, conditions, feature->GetFID(), points, polygons, name);
     }
   }
   if (features == 0) throw InputError(name + ": has no features: empty release");

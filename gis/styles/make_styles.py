@@ -187,7 +187,8 @@ def style(unit, counts, breaks, colours):
 
 
 # trajectories.gpkg: (field, alias) in the layer's order; QGIS shows the GeoPackage's fid first.
-TRAJECTORY_FIELDS = [("fid", ""), ("run_id", "Run"), ("source_id", "Release source"),
+TRAJECTORY_FIELDS = [("fid", ""), ("run_id", "Run"), ("source_id", "Release source (0-based, as --only-source)"),
+                     ("release_fid", "Release feature (FID of the release layer)"),
                      ("stop_reason", "Stop reason"), ("max_energy_kj", "Maximum kinetic energy (kJ)"),
                      ("runout_length_m", "Runout length (m)")]
 TRAJECTORY_LINE_WIDTH_MM = "0.5"

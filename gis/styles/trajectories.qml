@@ -514,6 +514,13 @@
         </config>
       </editWidget>
     </field>
+    <field name="release_fid" configurationFlags="None">
+      <editWidget type="">
+        <config>
+          <Option/>
+        </config>
+      </editWidget>
+    </field>
     <field name="stop_reason" configurationFlags="None">
       <editWidget type="">
         <config>
@@ -539,15 +546,17 @@
   <aliases>
     <alias field="fid" index="0" name=""/>
     <alias field="run_id" index="1" name="Run"/>
-    <alias field="source_id" index="2" name="Release source"/>
-    <alias field="stop_reason" index="3" name="Stop reason"/>
-    <alias field="max_energy_kj" index="4" name="Maximum kinetic energy (kJ)"/>
-    <alias field="runout_length_m" index="5" name="Runout length (m)"/>
+    <alias field="source_id" index="2" name="Release source (0-based, as --only-source)"/>
+    <alias field="release_fid" index="3" name="Release feature (FID of the release layer)"/>
+    <alias field="stop_reason" index="4" name="Stop reason"/>
+    <alias field="max_energy_kj" index="5" name="Maximum kinetic energy (kJ)"/>
+    <alias field="runout_length_m" index="6" name="Runout length (m)"/>
   </aliases>
   <defaults>
     <default field="fid" expression="" applyOnUpdate="0"/>
     <default field="run_id" expression="" applyOnUpdate="0"/>
     <default field="source_id" expression="" applyOnUpdate="0"/>
+    <default field="release_fid" expression="" applyOnUpdate="0"/>
     <default field="stop_reason" expression="" applyOnUpdate="0"/>
     <default field="max_energy_kj" expression="" applyOnUpdate="0"/>
     <default field="runout_length_m" expression="" applyOnUpdate="0"/>
@@ -556,6 +565,7 @@
     <constraint field="fid" constraints="3" unique_strength="1" notnull_strength="1" exp_strength="0"/>
     <constraint field="run_id" constraints="0" unique_strength="0" notnull_strength="0" exp_strength="0"/>
     <constraint field="source_id" constraints="0" unique_strength="0" notnull_strength="0" exp_strength="0"/>
+    <constraint field="release_fid" constraints="0" unique_strength="0" notnull_strength="0" exp_strength="0"/>
     <constraint field="stop_reason" constraints="0" unique_strength="0" notnull_strength="0" exp_strength="0"/>
     <constraint field="max_energy_kj" constraints="0" unique_strength="0" notnull_strength="0" exp_strength="0"/>
     <constraint field="runout_length_m" constraints="0" unique_strength="0" notnull_strength="0" exp_strength="0"/>
@@ -564,6 +574,7 @@
     <constraint field="fid" exp="" desc=""/>
     <constraint field="run_id" exp="" desc=""/>
     <constraint field="source_id" exp="" desc=""/>
+    <constraint field="release_fid" exp="" desc=""/>
     <constraint field="stop_reason" exp="" desc=""/>
     <constraint field="max_energy_kj" exp="" desc=""/>
     <constraint field="runout_length_m" exp="" desc=""/>

@@ -23,4 +23,8 @@ ReleaseConditions ReleaseSet::cell_conditions(int col, int row) const {
   return set > 0 ? condition_sets[static_cast<std::size_t>(set - 1)] : ReleaseConditions{};
 }
 
+std::int64_t ReleaseSet::cell_feature(int col, int row) const {
+  return feature_of_cell.size() == 0 ? kNoReleaseFeature : feature_of_cell.at(col, row);
+}
+
 }  // namespace talus

@@ -54,8 +54,8 @@ class PartProgress final : public Progress {
 // centre above the unperturbed ground (m), over its samples after the release sample.
 double largest_jump(const GroundModel& ground, const TrajectoryLine& line) {
   double largest = 0.0;
-  for (std::size_t i = 1; i < line.points.size(); ++i) {
-    const Eigen::Vector3d& p = line.points[i];
+  for (std::size_t i = 1; i < line.vertices.size(); ++i) {
+    const Eigen::Vector3d& p = line.vertices[i].position;
     if (ground.contains(p.x(), p.y())) largest = std::max(largest, p.z() - ground.elevation(p.x(), p.y()));
   }
   return largest;

@@ -63,7 +63,7 @@ class RunObserver final : public TrajectoryObserver {
     last_ = sample.position;
     has_last_ = true;
     max_energy_ = std::max(max_energy_, sample.kinetic_energy);
-    if (line_ != nullptr) line_->points.push_back(sample.position);
+    if (line_ != nullptr) keep_vertex(sample);
   }
   void on_energy_loss(double x, double y, double friction, double deformation) override {
     recorder_.on_energy_loss(x, y, friction, deformation);
@@ -85,6 +85,13 @@ class RunObserver final : public TrajectoryObserver {
     recorder_.on_fragment(start);
   }
   double path_length() const { return path_length_; }
+  // Appends the sample to the saved line unless it would end a zero-length segment.
+  void keep_vertex(const TrajectorySample& sample) {
+    auto& vertices = line_->vertices;
+    if (!vertices.empty() && (sample.position - vertices.back().position).norm() < kShortestTrajectorySegment) return;
+    vertices.push_back({sample.position, sample.time, sample.velocity.norm(), sample.kinetic_energy / 1000.0,
+                        sample.jump_height});
+  }
   const std::vector<StopReason>& stops() const { return stops_; }  // every fragment's, first fragment's first
   std::uint64_t fragments() const { return fragments_; }
 
@@ -144,11 +151,12 @@ std::vector<ReleaseSource> release_sources(const ReleaseSet& release) {
   for (int row = 0; row < spec.height; ++row) {
     for (int col = 0; col < spec.width; ++col) {
       if (release.depth.at(col, row) > 0.0f) {
-        sources.push_back({spec.node_x(col), spec.node_y(row), true, release.cell_conditions(col, row)});
+        sources.push_back({spec.node_x(col), spec.node_y(row), true, release.cell_conditions(col, row),
+                           release.cell_feature(col, row)});
       }
     }
   }
-  for (const auto& p : release.points) sources.push_back({p.x, p.y, false, p.conditions});
+  for (const auto& p : release.points) sources.push_back({p.x, p.y, false, p.conditions, p.feature_id});
   return sources;
 }
 
@@ -215,7 +223,7 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
                                  sources[source_index].conditions.release_height.value_or(settings.stochastic.release_height);
       TrajectoryLine* line = nullptr;
       if (save_stride != 0 && n % save_stride == 0) {
-        lines.push_back({source_index, run, StopReason::at_rest, 0, 0, {}});
+        lines.push_back({source_index, run, sources[source_index].feature_id, StopReason::at_rest, 0, 0, {}});
         line = &lines.back();
       }
       observer.start(line);

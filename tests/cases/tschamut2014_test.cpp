@@ -75,7 +75,7 @@ Runouts simulated_runouts(const fs::path& out) {
   GDALDatasetUniquePtr data(GDALDataset::Open((out / "trajectories.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   Runouts runs;
   if (!data) return runs;
-  for (auto& feature : *data->GetLayer(0)) {
+  for (auto& feature : *data->GetLayerByName("trajectories")) {
     const OGRGeometry* geometry = feature->GetGeometryRef();
     if (geometry == nullptr || geometry->IsEmpty()) {
       add_run(runs, 0.0, 0.0);

@@ -92,7 +92,7 @@ std::map<std::pair<long long, long long>, double> line_lengths(const fs::path& o
   GDALDatasetUniquePtr data(GDALDataset::Open((out / "trajectories.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   std::map<std::pair<long long, long long>, double> lengths;
   if (!data) return lengths;
-  for (auto& feature : *data->GetLayer(0)) {
+  for (auto& feature : *data->GetLayerByName("trajectories")) {
     lengths[{feature->GetFieldAsInteger64("source_id"), feature->GetFieldAsInteger64("run_id")}] =
         feature->GetFieldAsDouble("runout_length_m");
   }

@@ -33,18 +33,24 @@ std::string epsg_wkt(int code) {
   return wkt_of(&srs);
 }
 
-// Three trajectories down a slope in EPSG:31287 metres, one with a source id beyond 32 bits.
+TrajectoryVertex vertex(double x, double y, double z, double time) {
+  return {{x, y, z}, time, 2.0 * time, 0.5 * time, 0.25 * time};
+}
+
+// Three trajectories down a slope in EPSG:31287 metres, one with a source id beyond 32 bits and
+// one from a raster cell (no release feature).
 std::vector<TrajectoryLine> sample_lines() {
   std::vector<TrajectoryLine> lines(3);
-  lines[0] = {.source_id = 7, .run_id = 0, .stop_reason = StopReason::at_rest, .max_energy = 12.5,
-              .runout_length = 80.25, .points = {}};
+  lines[0] = {.source_id = 7, .run_id = 0, .release_fid = 3, .stop_reason = StopReason::at_rest, .max_energy = 12.5,
+              .runout_length = 80.25, .vertices = {}};
   for (int i = 0; i < 50; ++i)
-    lines[0].points.emplace_back(612000.0 + 1.5 * i, 385000.0 - 0.5 * i, 1500.0 - 0.75 * i + 0.125);
-  lines[1] = {.source_id = 7, .run_id = 1, .stop_reason = StopReason::left_dem, .max_energy = 4200.0,
-              .runout_length = 310.5, .points = {{612010.0, 384990.0, 1490.0}, {612100.0, 384900.0, 1400.5}}};
-  lines[2] = {.source_id = std::uint64_t{1} << 40, .run_id = 3, .stop_reason = StopReason::max_time,
-              .max_energy = 0.0, .runout_length = 0.0,
-              .points = {{612020.0, 384980.0, 1480.0}, {612020.0, 384980.0, 1480.0}, {612021.0, 384979.0, 1479.0}}};
+    lines[0].vertices.push_back(vertex(612000.0 + 1.5 * i, 385000.0 - 0.5 * i, 1500.0 - 0.75 * i + 0.125, 0.1 * i));
+  lines[1] = {.source_id = 7, .run_id = 1, .release_fid = 3, .stop_reason = StopReason::left_dem, .max_energy = 4200.0,
+              .runout_length = 310.5,
+              .vertices = {vertex(612010.0, 384990.0, 1490.0, 0.0), vertex(612100.0, 384900.0, 1400.5, 7.5)}};
+  lines[2] = {.source_id = std::uint64_t{1} << 40, .run_id = 3, .release_fid = kNoReleaseFeature,
+              .stop_reason = StopReason::max_time, .max_energy = 0.0, .runout_length = 0.0,
+              .vertices = {vertex(612020.0, 384980.0, 1480.0, 0.0), vertex(612021.0, 384979.0, 1479.0, 1.0)}};
   return lines;
 }
 
@@ -85,19 +91,54 @@ void expect_features_equal(OGRLayer& layer, const std::vector<TrajectoryLine>& l
     ASSERT_TRUE(feature);
     EXPECT_EQ(feature->GetFieldAsInteger64("run_id"), static_cast<GIntBig>(line.run_id));
     EXPECT_EQ(feature->GetFieldAsInteger64("source_id"), static_cast<GIntBig>(line.source_id));
+    if (line.release_fid == kNoReleaseFeature) {
+      EXPECT_TRUE(feature->IsFieldNull(feature->GetFieldIndex("release_fid")));
+    } else {
+      EXPECT_EQ(feature->GetFieldAsInteger64("release_fid"), line.release_fid);
+    }
     EXPECT_STREQ(feature->GetFieldAsString("stop_reason"), to_string(line.stop_reason));
     EXPECT_EQ(feature->GetFieldAsDouble("max_energy_kj"), line.max_energy);
     EXPECT_EQ(feature->GetFieldAsDouble("runout_length_m"), line.runout_length);
     const OGRGeometry* geometry = feature->GetGeometryRef();
     ASSERT_NE(geometry, nullptr);
-    ASSERT_EQ(geometry->getGeometryType(), wkbLineString25D);
+    ASSERT_EQ(geometry->getGeometryType(), wkbLineStringZM);
     const auto* points = geometry->toLineString();
-    ASSERT_EQ(points->getNumPoints(), static_cast<int>(line.points.size()));
+    ASSERT_EQ(points->getNumPoints(), static_cast<int>(line.vertices.size()));
     for (int i = 0; i < points->getNumPoints(); ++i) {
-      const Eigen::Vector3d& p = line.points[static_cast<std::size_t>(i)];
-      EXPECT_EQ(points->getX(i), p.x()) << "point " << i;
-      EXPECT_EQ(points->getY(i), p.y()) << "point " << i;
-      EXPECT_EQ(points->getZ(i), p.z()) << "point " << i;
+      const TrajectoryVertex& v = line.vertices[static_cast<std::size_t>(i)];
+      EXPECT_EQ(points->getX(i), v.position.x()) << "point " << i;
+      EXPECT_EQ(points->getY(i), v.position.y()) << "point " << i;
+      EXPECT_EQ(points->getZ(i), v.position.z()) << "point " << i;
+      EXPECT_EQ(points->getM(i), v.time) << "point " << i;
+    }
+  }
+}
+
+// The vertex layer holds every vertex of every line, in order, with its values and the
+// horizontal distance along the path.
+void expect_vertices_equal(OGRLayer& layer, const std::vector<TrajectoryLine>& lines) {
+  std::size_t total = 0;
+  for (const TrajectoryLine& line : lines) total += line.vertices.size();
+  ASSERT_EQ(layer.GetFeatureCount(), static_cast<GIntBig>(total));
+  layer.ResetReading();
+  for (const TrajectoryLine& line : lines) {
+    double distance = 0.0;
+    for (std::size_t i = 0; i < line.vertices.size(); ++i) {
+      const TrajectoryVertex& v = line.vertices[i];
+      if (i > 0) distance += (v.position - line.vertices[i - 1].position).head<2>().norm();
+      const std::unique_ptr<OGRFeature> feature(layer.GetNextFeature());
+      ASSERT_TRUE(feature);
+      EXPECT_EQ(feature->GetFieldAsInteger64("source_id"), static_cast<GIntBig>(line.source_id));
+      EXPECT_EQ(feature->GetFieldAsInteger64("run_id"), static_cast<GIntBig>(line.run_id));
+      EXPECT_EQ(feature->GetFieldAsInteger("vertex"), static_cast<int>(i));
+      EXPECT_EQ(feature->GetFieldAsDouble("time_s"), v.time);
+      EXPECT_EQ(feature->GetFieldAsDouble("distance_m"), distance);
+      EXPECT_EQ(feature->GetFieldAsDouble("speed_m_s"), v.speed);
+      EXPECT_EQ(feature->GetFieldAsDouble("energy_kj"), v.kinetic_energy);
+      EXPECT_EQ(feature->GetFieldAsDouble("jump_height_m"), v.jump_height);
+      const auto* point = feature->GetGeometryRef()->toPoint();
+      EXPECT_EQ(point->getX(), v.position.x());
+      EXPECT_EQ(point->getZ(), v.position.z());
     }
   }
 }
@@ -113,7 +154,7 @@ int check_in_qgis(const std::string& arguments) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-TEST(TrajectoryWriter, WritesLineStringZFeaturesWithTheirAttributesInTheCrs) {
+TEST(TrajectoryWriter, WritesLinesWithTimeAsMAndTheirVerticesWithTheirAttributesInTheCrs) {
   const auto path = test::fresh_folder("trajectories_crs") / "trajectories.gpkg";
   const auto lines = sample_lines();
   write_trajectories(path, lines, epsg_wkt(31287));
@@ -121,21 +162,23 @@ TEST(TrajectoryWriter, WritesLineStringZFeaturesWithTheirAttributesInTheCrs) {
   const auto dataset = open_vector(path);
   ASSERT_TRUE(dataset);
   EXPECT_STREQ(dataset->GetDriver()->GetDescription(), "GPKG");
-  ASSERT_EQ(dataset->GetLayerCount(), 1);
-  OGRLayer* layer = dataset->GetLayer(0);
-  EXPECT_STREQ(layer->GetName(), "trajectories");
+  ASSERT_EQ(dataset->GetLayerCount(), 2);
+  OGRLayer* layer = dataset->GetLayerByName("trajectories");
+  ASSERT_NE(layer, nullptr);
   EXPECT_TRUE(OGR_GT_HasZ(layer->GetGeomType()));
+  EXPECT_TRUE(OGR_GT_HasM(layer->GetGeomType()));
   EXPECT_EQ(wkbFlatten(layer->GetGeomType()), wkbLineString);
   EXPECT_STREQ(layer->GetMetadataItem("TALUS_VERSION"), TALUS_VERSION);
 
   const OGRFeatureDefn* definition = layer->GetLayerDefn();
-  ASSERT_EQ(definition->GetFieldCount(), 5);
+  ASSERT_EQ(definition->GetFieldCount(), 6);
   const std::vector<std::pair<std::string, OGRFieldType>> fields = {{"run_id", OFTInteger64},
                                                                      {"source_id", OFTInteger64},
+                                                                     {"release_fid", OFTInteger64},
                                                                      {"stop_reason", OFTString},
                                                                      {"max_energy_kj", OFTReal},
                                                                      {"runout_length_m", OFTReal}};
-  for (int i = 0; i < 5; ++i) {
+  for (int i = 0; i < 6; ++i) {
     EXPECT_EQ(definition->GetFieldDefn(i)->GetNameRef(), fields[static_cast<std::size_t>(i)].first);
     EXPECT_EQ(definition->GetFieldDefn(i)->GetType(), fields[static_cast<std::size_t>(i)].second);
   }
@@ -147,6 +190,11 @@ TEST(TrajectoryWriter, WritesLineStringZFeaturesWithTheirAttributesInTheCrs) {
   EXPECT_TRUE(layer->GetSpatialRef()->IsSame(&expected));
   EXPECT_EQ(srs_id_of(*dataset), 31287);
   expect_features_equal(*layer, lines);
+  OGRLayer* vertices = dataset->GetLayerByName("trajectory_vertices");
+  ASSERT_NE(vertices, nullptr);
+  EXPECT_TRUE(OGR_GT_HasZ(vertices->GetGeomType()));
+  EXPECT_TRUE(vertices->GetSpatialRef()->IsSame(&expected));
+  expect_vertices_equal(*vertices, lines);
 
   OGREnvelope extent;
   ASSERT_EQ(layer->GetExtent(&extent), OGRERR_NONE);
@@ -161,7 +209,7 @@ TEST(TrajectoryWriter, WritesLocalCoordinatesInTheUndefinedCartesianSrs) {
   const auto dataset = open_vector(path);
   ASSERT_TRUE(dataset);
   EXPECT_EQ(srs_id_of(*dataset), -1);  // not 0, the undefined geographic SRS
-  OGRLayer* layer = dataset->GetLayer(0);
+  OGRLayer* layer = dataset->GetLayerByName("trajectories");
   ASSERT_NE(layer->GetSpatialRef(), nullptr);
   EXPECT_TRUE(layer->GetSpatialRef()->IsLocal());
   EXPECT_EQ(layer->GetSpatialRef()->GetLinearUnits(), 1.0);
@@ -172,22 +220,22 @@ TEST(TrajectoryWriter, WritesLocalCoordinatesInTheUndefinedCartesianSrs) {
 TEST(TrajectoryWriter, KeepsALineOfOnePointAsAFeatureWithoutGeometryAndAnEmptySetAsAnEmptyLayer) {
   const auto folder = test::fresh_folder("trajectories_degenerate");
   const TrajectoryLine stuck{.source_id = 9, .run_id = 2, .stop_reason = StopReason::nodata_area, .max_energy = 0.5,
-                             .runout_length = 0.0, .points = {{612000.0, 385000.0, 1500.0}}};
+                             .runout_length = 0.0, .vertices = {vertex(612000.0, 385000.0, 1500.0, 0.0)}};
   write_trajectories(folder / "one.gpkg", {stuck}, epsg_wkt(31287));
   write_trajectories(folder / "none.gpkg", {}, epsg_wkt(31287));
 
   const auto one = open_vector(folder / "one.gpkg");
   ASSERT_TRUE(one);
-  ASSERT_EQ(one->GetLayer(0)->GetFeatureCount(), 1);
-  const std::unique_ptr<OGRFeature> feature(one->GetLayer(0)->GetNextFeature());
+  ASSERT_EQ(one->GetLayerByName("trajectories")->GetFeatureCount(), 1);
+  const std::unique_ptr<OGRFeature> feature(one->GetLayerByName("trajectories")->GetNextFeature());
   EXPECT_EQ(feature->GetGeometryRef(), nullptr);
   EXPECT_EQ(feature->GetFieldAsInteger64("source_id"), 9);
   EXPECT_STREQ(feature->GetFieldAsString("stop_reason"), to_string(StopReason::nodata_area));
 
   const auto none = open_vector(folder / "none.gpkg");
   ASSERT_TRUE(none);
-  EXPECT_EQ(none->GetLayer(0)->GetFeatureCount(), 0);
-  EXPECT_TRUE(OGR_GT_HasZ(none->GetLayer(0)->GetGeomType()));
+  EXPECT_EQ(none->GetLayerByName("trajectories")->GetFeatureCount(), 0);
+  EXPECT_TRUE(OGR_GT_HasZ(none->GetLayerByName("trajectories")->GetGeomType()));
 }
 
 TEST(TrajectoryWriter, ReplacesAnEarlierFile) {
@@ -196,9 +244,9 @@ TEST(TrajectoryWriter, ReplacesAnEarlierFile) {
   write_trajectories(path, {sample_lines()[1]}, "");
   const auto dataset = open_vector(path);
   ASSERT_TRUE(dataset);
-  ASSERT_EQ(dataset->GetLayerCount(), 1);
+  ASSERT_EQ(dataset->GetLayerCount(), 2);
   EXPECT_EQ(srs_id_of(*dataset), -1);
-  expect_features_equal(*dataset->GetLayer(0), {sample_lines()[1]});
+  expect_features_equal(*dataset->GetLayerByName("trajectories"), {sample_lines()[1]});
 }
 
 TEST(TrajectoryWriter, FailuresNameThePathAndLeaveNoFile) {
@@ -235,7 +283,7 @@ TEST(TrajectoryWriter, AddsTheGeoPackageAndItsStyleToALayerSet) {
   EXPECT_EQ(*style, read_text(test::source_dir() / "gis/styles/trajectories.qml"));
   const auto dataset = open_vector(folder / "trajectories.gpkg");
   ASSERT_TRUE(dataset);
-  expect_features_equal(*dataset->GetLayer(0), sample_lines());
+  expect_features_equal(*dataset->GetLayerByName("trajectories"), sample_lines());
 }
 
 TEST(TrajectoryWriter, LeavesNothingWhenTheSetIsNeverCommitted) {

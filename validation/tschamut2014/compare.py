@@ -46,7 +46,7 @@ def observed():
 def simulated(folder):
     runouts, azimuths = [], []
     data = ogr.Open(os.path.join(folder, "trajectories.gpkg"))
-    for feature in data.GetLayer(0):
+    for feature in data.GetLayerByName("trajectories"):
         line = feature.GetGeometryRef()
         if line is None:  # a rock that never moved leaves a line of one point, which has no geometry
             runouts.append(0.0)
@@ -60,7 +60,7 @@ def simulated(folder):
 
 def energies_and_heights(folder):
     data = ogr.Open(os.path.join(folder, "trajectories.gpkg"))
-    energies = [feature.GetField("max_energy_kj") for feature in data.GetLayer(0)]
+    energies = [feature.GetField("max_energy_kj") for feature in data.GetLayerByName("trajectories")]
     passages = gdal.Open(os.path.join(folder, "passages.tif")).ReadAsArray() > 0
     jump = gdal.Open(os.path.join(folder, "jump_height_p95.tif")).ReadAsArray()[passages]
     speed = gdal.Open(os.path.join(folder, "velocity_max.tif")).ReadAsArray()[passages]

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "talus/core/grid.hpp"
@@ -11,10 +12,14 @@
 
 namespace talus {
 
+// The feature id of a release that does not come from a vector feature (a raster cell).
+inline constexpr std::int64_t kNoReleaseFeature = -1;
+
 struct ReleasePoint {
   double x = 0, y = 0;           // m, in the DEM's CRS
   double depth = 0;              // m, from a `depth` attribute (0 when none)
   ReleaseConditions conditions;  // rock fall: what the point's attributes give
+  std::int64_t feature_id = kNoReleaseFeature;  // FID of the vector feature it comes from
 };
 
 struct ReleaseSet {
@@ -25,12 +30,16 @@ struct ReleaseSet {
   // index of its set (0: none). Both empty otherwise.
   std::vector<ReleaseConditions> condition_sets;
   Grid<int> condition_set_of_cell;
+  // A vector release: per cell the FID of the polygon that covers it (kNoReleaseFeature: none),
+  // so that results join to the release layer. Empty for a raster release.
+  Grid<std::int64_t> feature_of_cell;
 
   std::size_t cell_count() const;    // cells with depth > 0
   double area() const;               // m2 covered by release cells
   double volume() const;             // m3: sum of depth x cell area
   std::size_t source_count() const { return cell_count() + points.size(); }
   ReleaseConditions cell_conditions(int col, int row) const;  // those of the cell's set (empty: none)
+  std::int64_t cell_feature(int col, int row) const;          // the covering polygon's FID, or kNoReleaseFeature
 };
 
 }  // namespace talus

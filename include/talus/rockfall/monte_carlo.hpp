@@ -76,6 +76,7 @@ struct ReleaseSource {
   double x = 0, y = 0;           // m
   bool is_cell = true;
   ReleaseConditions conditions;
+  std::int64_t feature_id = kNoReleaseFeature;  // FID of the release feature it comes from
 };
 std::vector<ReleaseSource> release_sources(const ReleaseSet& release);
 

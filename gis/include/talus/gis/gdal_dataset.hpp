@@ -55,6 +55,7 @@ struct VectorLayerSpec {
   const char* identifier;
   const char* description;
   std::span<const VectorField> fields;
+  bool spatial_index = true;  // false: no R-tree (a layer read by attribute, not drawn at scale)
 };
 
 // Creates the layer in `dataset` (being written to `path`) with its fields and a TALUS_VERSION
