@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -33,6 +35,8 @@ struct MudflowOptions {
   std::string release_thickness = to_string(ReleaseThickness::normal);  // into settings.release_thickness
   double release_depth = 0;            // m: --depth, [mud] release_depth; 0: the release file's depths
   std::string depth_field = "depth";   // --depth-field, [mud] depth_field
+  std::string snapshot_start = gis::kDefaultSnapshotStart;  // --start-time, [outputs] snapshot_start
+  std::int64_t snapshot_start_seconds = 0;                  // s after 1970-01-01, from snapshot_start
   MudflowSettings settings;
   std::vector<std::string> command_line;
 };
@@ -48,7 +52,8 @@ constexpr Flag kFlags[] = {{"run", "duration", "--duration"},       {"run", "see
                            {"run", "threads", "--threads"},         {"mud", "material", "--material"},
                            {"mud", "particle_size", "--particle-size"}, {"adaptivity", "adaptive", "--adaptive"},
                            {"rheology", "rheology", "--rheology"},  {"outputs", "snapshot_interval", "--snapshots"},
-                           {"mud", "release_depth", "--depth"},     {"mud", "depth_field", "--depth-field"}};
+                           {"mud", "release_depth", "--depth"},     {"mud", "depth_field", "--depth-field"},
+                           {"outputs", "snapshot_start", "--start-time"}};
 
 // Every MudflowSettings field (mudflow_simulation.hpp, rheology.hpp) as a scenario parameter.
 ParameterTable parameter_table(MudflowOptions& o) {
@@ -130,6 +135,8 @@ ParameterTable parameter_table(MudflowOptions& o) {
   table.add("outputs", "map_interval", "s", "flow depth, velocity and pressure maxima are sampled this often",
             &s.map_interval);
   table.add("outputs", "snapshot_interval", "s", "> 0: particles.gpkg holds the particles this often", &s.snapshot_interval);
+  table.add("outputs", "snapshot_start", "",
+            "date-time of the release on particles.gpkg's clock, YYYY-MM-DDTHH:MM:SS (no time zone)", &o.snapshot_start);
   return table;
 }
 
@@ -248,6 +255,10 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   const bool snapshots_flag = table.given_on_command_line("outputs", "snapshot_interval");
   check.require(snapshots_flag ? s.snapshot_interval > 0.0 : s.snapshot_interval >= 0.0, "outputs", "snapshot_interval",
                 s.snapshot_interval, snapshots_flag ? "expected an interval > 0 s" : "expected 0 (none) or an interval > 0 s");
+  const std::optional<std::int64_t> start = gis::parse_snapshot_start(o.snapshot_start);
+  check.require(start.has_value(), "outputs", "snapshot_start", o.snapshot_start,
+                "expected a date-time YYYY-MM-DDTHH:MM:SS, years 1000-9999");
+  o.snapshot_start_seconds = *start;
   if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
     throw InputError(o.out.string() + " (--out): exists and is not a folder");
   }
@@ -393,7 +404,8 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   gis::LayerWriter writer(o.out, {{"TALUS_SCENARIO", scenario_text(o)}});
   write_layers(writer, result.layers);
   if (o.settings.snapshot_interval > 0.0) {
-    gis::add_particle_snapshots(writer, result.snapshots, o.settings.snapshot_interval, ground.spec().crs_wkt);
+    gis::add_particle_snapshots(writer, result.snapshots, o.settings.snapshot_interval, ground.spec().crs_wkt,
+                                o.snapshot_start_seconds);
   }
   record_run(record, o, scene, table, result);
   record.add_timing("read_inputs", read_seconds);
@@ -440,6 +452,9 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
   auto* snapshots = cmd->add_option("--snapshots", o->settings.snapshot_interval,
                                     "Write particles.gpkg with the particles every SECONDS of simulated time");
   auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(defaults.seed);
+  auto* start_time = cmd->add_option("--start-time", o->snapshot_start,
+                                     "Date-time of the release on particles.gpkg's clock, YYYY-MM-DDTHH:MM:SS (default "
+                                     "2000-01-01T00:00:00: the clock reads the time since release)");
   auto* depth = cmd->add_option("--depth", o->release_depth,
                                 "One release depth (m) for every release cell, polygon and point: makes a 0/1 mask "
                                 "or a layer without depths a release");
@@ -450,8 +465,9 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
                                   "OMP_WAIT_POLICY=passive in the environment (docs/performance.md)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
   cmd->callback([o, table, &action, duration, material, size, adaptive, rheology, snapshots, seed, threads, depth,
-                 depth_field] {
-    const CLI::Option* given[] = {duration, seed, threads, material, size, adaptive, rheology, snapshots, depth, depth_field};
+                 depth_field, start_time] {
+    const CLI::Option* given[] = {duration, seed,      threads, material,    size,      adaptive,
+                                  rheology, snapshots, depth,   depth_field, start_time};
     static_assert(std::size(kFlags) == std::size(given));
     for (std::size_t k = 0; k < std::size(kFlags); ++k) {
       if (given[k]->count() > 0) table->pin(kFlags[k].section, kFlags[k].name);

@@ -374,6 +374,8 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
       {with(sample, {"--depth", "0.0001"}), "--depth 0.0001: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
       {with(sample, {"--depth", "nan"}), "--depth nan: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
       {with(sample, {"--depth", "500"}), "--depth 500: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
+      {with(sample, {"--snapshots", "10", "--start-time", "tomorrow"}),
+       "--start-time tomorrow: expected a date-time YYYY-MM-DDTHH:MM:SS, years 1000-9999"},
   };
   for (const Case& c : cases) {
     const auto result = test::run_talus(c.arguments, root);

@@ -65,14 +65,17 @@ GDALDatasetUniquePtr open_vector(const fs::path& path) {
   return GDALDatasetUniquePtr(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
 }
 
-// "YYYY/MM/DD HH:MM:SS.sss+00" as OGR prints a DateTime field.
+// The release at 2000-01-01T00:00:00, the default clock (s after 1970-01-01).
+constexpr std::int64_t kStart = 946684800;
+
+// "YYYY/MM/DD HH:MM:SS.sss" as OGR prints a DateTime field without time zone.
 std::string time_text(OGRFeature& feature, const char* field) { return feature.GetFieldAsString(field); }
 
 TEST(ParticleSnapshotWriter, WritesEveryParticleOfEverySnapshotWithItsTimeSpan) {
   const auto folder = test::fresh_folder("particles_fields");
   const auto path = folder / "particles.gpkg";
   const auto snapshots = sample_snapshots();
-  write_particle_snapshots(path, snapshots, 0.5, epsg_wkt(31287));
+  write_particle_snapshots(path, snapshots, 0.5, epsg_wkt(31287), kStart);
 
   const auto dataset = open_vector(path);
   ASSERT_TRUE(dataset);
@@ -99,12 +102,12 @@ TEST(ParticleSnapshotWriter, WritesEveryParticleOfEverySnapshotWithItsTimeSpan) 
       EXPECT_EQ(geometry->toPoint()->getY(), snapshot.y[i]);
       EXPECT_EQ(geometry->toPoint()->getZ(), snapshot.z[i]);
       if (snapshot.time == 0.5) {
-        EXPECT_EQ(time_text(*feature, "start_time"), "2000/01/01 00:00:00.500+00");
-        EXPECT_EQ(time_text(*feature, "end_time"), "2000/01/01 01:02:05.249+00");  // 1 ms before the next
+        EXPECT_EQ(time_text(*feature, "start_time"), "2000/01/01 00:00:00.500");
+        EXPECT_EQ(time_text(*feature, "end_time"), "2000/01/01 01:02:05.249");  // 1 ms before the next
       }
       if (snapshot.time > 3600.0) {
-        EXPECT_EQ(time_text(*feature, "start_time"), "2000/01/01 01:02:05.250+00");
-        EXPECT_EQ(time_text(*feature, "end_time"), "2000/01/01 01:02:05.749+00");  // the last: one interval
+        EXPECT_EQ(time_text(*feature, "start_time"), "2000/01/01 01:02:05.250");
+        EXPECT_EQ(time_text(*feature, "end_time"), "2000/01/01 01:02:05.749");  // the last: one interval
       }
     }
   }
@@ -114,7 +117,7 @@ TEST(ParticleSnapshotWriter, WritesEveryParticleOfEverySnapshotWithItsTimeSpan) 
 TEST(ParticleSnapshotWriter, LocalCoordinatesGetTheUndefinedCartesianSrs) {
   const auto folder = test::fresh_folder("particles_local");
   const auto path = folder / "particles.gpkg";
-  write_particle_snapshots(path, sample_snapshots(), 1.0, "");
+  write_particle_snapshots(path, sample_snapshots(), 1.0, "", kStart);
   const auto dataset = open_vector(path);
   ASSERT_TRUE(dataset);
   const OGRSpatialReference* srs = dataset->GetLayer(0)->GetSpatialRef();
@@ -123,30 +126,51 @@ TEST(ParticleSnapshotWriter, LocalCoordinatesGetTheUndefinedCartesianSrs) {
   EXPECT_FALSE(srs->IsGeographic());
 }
 
+TEST(ParticleSnapshotWriter, StartTimeIsADateTimeWithoutZone) {
+  EXPECT_EQ(parse_snapshot_start("2000-01-01T00:00:00"), kStart);
+  EXPECT_EQ(parse_snapshot_start("2000-01-01T00:00:00Z"), kStart);
+  EXPECT_EQ(parse_snapshot_start("2024-06-13T14:30:05"), std::int64_t{1718289005});
+  for (const char* bad : {"2024-02-30T00:00:00", "2024-06-13", "2024-06-13T14:30:05+02:00", "0999-01-01T00:00:00",
+                          "yesterday", ""}) {
+    EXPECT_FALSE(parse_snapshot_start(bad).has_value()) << bad;
+  }
+}
+
+TEST(ParticleSnapshotWriter, ClockStartsAtTheGivenDateTime) {
+  const auto path = test::fresh_folder("particles_start") / "particles.gpkg";
+  write_particle_snapshots(path, sample_snapshots(), 0.5, epsg_wkt(31287), *parse_snapshot_start("2024-06-13T14:30:00"));
+  const auto dataset = open_vector(path);
+  ASSERT_TRUE(dataset);
+  OGRLayer* layer = dataset->GetLayerByName("particles");
+  const std::unique_ptr<OGRFeature> first(layer->GetNextFeature());
+  EXPECT_EQ(time_text(*first, "start_time"), "2024/06/13 14:30:00");
+}
+
 TEST(ParticleSnapshotWriter, RefusesUnevenColumnsAndLeavesNoFile) {
   const auto folder = test::fresh_folder("particles_uneven");
   auto snapshots = sample_snapshots();
   snapshots[1].mass.pop_back();
-  EXPECT_THROW(write_particle_snapshots(folder / "particles.gpkg", snapshots, 0.5, epsg_wkt(31287)), std::logic_error);
+  EXPECT_THROW(write_particle_snapshots(folder / "particles.gpkg", snapshots, 0.5, epsg_wkt(31287), kStart), std::logic_error);
   EXPECT_FALSE(fs::exists(folder / "particles.gpkg"));
-  EXPECT_THROW(write_particle_snapshots(folder / "particles.gpkg", sample_snapshots(), 0.0, ""), std::invalid_argument);
+  EXPECT_THROW(write_particle_snapshots(folder / "particles.gpkg", sample_snapshots(), 0.0, "", kStart), std::invalid_argument);
 }
 
 TEST(ParticleSnapshotWriter, JoinsALayerSetAndAppearsOnlyOnCommit) {
   const auto folder = test::fresh_folder("particles_set");
   {
     LayerWriter writer(folder / "out", {});
-    add_particle_snapshots(writer, sample_snapshots(), 0.5, epsg_wkt(31287));
+    add_particle_snapshots(writer, sample_snapshots(), 0.5, epsg_wkt(31287), kStart);
     EXPECT_FALSE(fs::exists(folder / "out" / "particles.gpkg"));
     writer.commit();
   }
   EXPECT_TRUE(fs::exists(folder / "out" / "particles.gpkg"));
+  EXPECT_TRUE(fs::exists(folder / "out" / "particles.qlr"));
   std::ifstream qml(folder / "out" / "particles.qml");
   std::string style((std::istreambuf_iterator<char>(qml)), std::istreambuf_iterator<char>());
   EXPECT_EQ(style, particle_style());
   {
     LayerWriter abandoned(folder / "abandoned", {});
-    add_particle_snapshots(abandoned, sample_snapshots(), 0.5, epsg_wkt(31287));
+    add_particle_snapshots(abandoned, sample_snapshots(), 0.5, epsg_wkt(31287), kStart);
   }
   EXPECT_TRUE(fs::is_empty(folder / "abandoned"));
 }
@@ -159,7 +183,7 @@ TEST(ParticleSnapshotWriter, JoinsALayerSetAndAppearsOnlyOnCommit) {
 constexpr const char* kQgisCheck = R"py(
 import os, sys
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
-from qgis.core import (QgsApplication, QgsVectorLayer, QgsWkbTypes, QgsDateTimeRange,
+from qgis.core import (QgsApplication, QgsVectorLayer, QgsWkbTypes, QgsDateTimeRange, QgsLayerDefinition, QgsProject,
                        QgsVectorLayerTemporalContext, QgsFeatureRequest, QgsVectorLayerTemporalProperties)
 from qgis.PyQt.QtCore import QDateTime, QDate, QTime, Qt
 app = QgsApplication([], False)
@@ -187,7 +211,7 @@ else:
         problems.append("the style does not make the layer temporal")
     context = QgsVectorLayerTemporalContext()
     context.setLayer(layer)
-    at = lambda ms: QDateTime(QDate(2000, 1, 1), QTime(0, 0, 0).addMSecs(ms), Qt.UTC)
+    at = lambda ms: QDateTime(QDate(2000, 1, 1), QTime(0, 0, 0).addMSecs(ms))
     # (frame start, frame end) in ms after release -> time_s of the particles shown.
     frames = [((0, 500), [0.0] * 3), ((500, 1000), [0.5] * 2), ((250, 500), [0.0] * 3), ((1000, 2000), [0.5] * 2),
               ((3725250, 3726000), [3725.25]), ((3725750, 3726000), [])]
@@ -196,7 +220,27 @@ else:
         shown = [f["time_s"] for f in layer.getFeatures(QgsFeatureRequest().setFilterExpression(expression))]
         if shown != expected:
             problems.append("frame [%d ms, %d ms) shows %s, expected %s" % (begin, end, shown, expected))
+    # A map set to one snapshot's instant shows that snapshot (a stored time zone hid them all).
+    for ms, expected in ((0, [0.0] * 3), (500, [0.5] * 2), (3725250, [3725.25])):
+        expression = temporal.createFilterString(context, QgsDateTimeRange(at(ms), at(ms)))
+        shown = [f["time_s"] for f in layer.getFeatures(QgsFeatureRequest().setFilterExpression(expression))]
+        if shown != expected:
+            problems.append("instant %d ms shows %s, expected %s" % (ms, shown, expected))
 del layer
+# The layer definition beside it opens the layer styled with its animation on.
+loaded, message = QgsLayerDefinition.loadLayerDefinition(os.path.splitext(sys.argv[1])[0] + ".qlr",
+                                                         QgsProject.instance(), QgsProject.instance().layerTreeRoot())
+layers = list(QgsProject.instance().mapLayers().values())
+if not loaded or len(layers) != 1 or not layers[0].isValid():
+    problems.append("particles.qlr does not load one valid layer: " + message)
+else:
+    if not layers[0].temporalProperties().isActive():
+        problems.append("particles.qlr loads the layer with its animation off")
+    if layers[0].renderer().type() != "graduatedSymbol" or layers[0].featureCount() != 6:
+        problems.append("particles.qlr: renderer %s, %d features" % (layers[0].renderer().type(), layers[0].featureCount()))
+    if layers[0].crs().authid() != "EPSG:31287":
+        problems.append("particles.qlr: CRS " + layers[0].crs().authid())
+QgsProject.instance().removeAllMapLayers()
 app.exitQgis()
 for p in problems:
     print(p)
@@ -209,7 +253,7 @@ TEST(ParticleSnapshotWriter, PlaysInTheQgisTemporalController) {
   const auto folder = test::fresh_folder("particles_qgis");
   {
     LayerWriter writer(folder, {});
-    add_particle_snapshots(writer, sample_snapshots(), 0.5, epsg_wkt(31287));
+    add_particle_snapshots(writer, sample_snapshots(), 0.5, epsg_wkt(31287), kStart);
     writer.commit();
   }
   const auto script = folder / "check_particles.py";
