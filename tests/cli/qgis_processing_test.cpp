@@ -41,7 +41,8 @@ TEST(QgisProcessing, QgisProcessRunsTheRockFallOnTheSampleScene) {
   const auto sample = test::source_dir() / "sample_dem";
   const std::string environment = "HOME=" + quoted((work / "home").string()) +
                                   " QGIS_PLUGINPATH=" + quoted((test::source_dir() / "gis/qgis").string()) +
-                                  " TALUS_PROGRAM=" + quoted(test::talus_exe().string()) + " QT_QPA_PLATFORM=offscreen ";
+                                  " TALUS_PROGRAM=" + quoted(test::talus_exe().string()) +
+                                  " QT_QPA_PLATFORM=offscreen GDAL_PAM_ENABLED=NO ";
   fs::create_directories(work / "home");
   ASSERT_EQ(exit_code(environment + kQgisProcess.string() + " plugins enable talus_processing > /dev/null 2>&1"), 0);
   const auto out = work / "out";

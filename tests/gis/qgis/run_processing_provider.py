@@ -15,6 +15,7 @@ import subprocess
 import sys
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+os.environ["GDAL_PAM_ENABLED"] = "NO"  # no .aux.xml beside the sample scene's files
 plugins, program, sample, work = sys.argv[1:5]
 os.environ["TALUS_PROGRAM"] = program
 sys.path.insert(0, plugins)
