@@ -136,8 +136,9 @@ std::string scenario_text(const RockfallOptions& o) {
 }
 
 void write_layers(gis::LayerWriter& writer, const RockfallLayers& layers) {
-  writer.add(layers.reach_probability, {"reach_probability", "Reach probability", ""});
+  writer.add(layers.reach_probability, {"reach_probability", "Reach probability per contributing source", ""});
   writer.add(layers.passages, {"passages", "Number of passages", ""});
+  writer.add(layers.source_count, {"source_count", "Number of release sources reaching the cell", ""});
   writer.add(layers.deposits, {"deposits", "Number of deposited rocks", ""});
   writer.add(layers.energy_max, {"energy_max", "Maximum kinetic energy", "kJ"});
   writer.add(layers.energy_p95, {"energy_p95", "95th percentile of kinetic energy over passages", "kJ"});
