@@ -4,9 +4,9 @@
 // Perlin grounds), for: the full model of paper 2.2/3.3 at several piston-carpet spacings and
 // time-step factors, and the fast bounce mode of paper 3.3 with the built-in materials table
 // and, when given, a calibrated one (`talus calibrate`). Each is compared with the finest full
-// model: median runout, two-sample Kolmogorov-Smirnov distance of the runouts, and the
-// reach-probability map. The reference run again with the next seed gives the Monte Carlo
-// noise floor of each metric. Each configuration runs in a child process under a time limit,
+// model: median runout, two-sample Kolmogorov-Smirnov distance of the runouts, and the map of
+// the reach probability per released block (passages / trajectories, docs/hazard-statistics.md).
+// The reference run again with the next seed gives the Monte Carlo noise floor of each metric. Each configuration runs in a child process under a time limit,
 // so that one that fails or never ends is reported and the sweep goes on. Writes one CSV row
 // per configuration (columns and units: docs/rockfall-speed-accuracy.md);
 // bench/plot_speed_accuracy.py draws the chart.
@@ -191,7 +191,7 @@ struct Outcome {
     std::uint64_t left_dem_stops = 0;
   } counts;
   std::vector<double> runouts;          // m, by (source, run)
-  std::vector<float> reach_probability; // -, per DEM cell, NaN outside the DEM's valid area
+  std::vector<float> reach_probability; // -, passages / trajectories per DEM cell, NaN outside the DEM's valid area
 };
 
 Outcome simulate(const SampleScene& sample, const talus::TrajectoryModel& model, const Options& options,
@@ -214,10 +214,14 @@ Outcome simulate(const SampleScene& sample, const talus::TrajectoryModel& model,
   outcome.counts.max_time_stops = result.stop_counts[static_cast<std::size_t>(talus::StopReason::max_time)];
   outcome.counts.left_dem_stops = result.stop_counts[static_cast<std::size_t>(talus::StopReason::left_dem)];
   outcome.runouts = std::move(result.runouts);
-  const talus::Grid<float>& reach = layers.reach_probability;
-  outcome.reach_probability.resize(reach.size());
-  for (std::size_t i = 0; i < reach.size(); ++i) {
-    outcome.reach_probability[i] = reach.is_valid(i) ? reach[i] : std::numeric_limits<float>::quiet_NaN();
+  // Per released block, not the layer's per contributing source: one denominator for the
+  // whole map, as this sweep has measured since issue 4.
+  const talus::Grid<float>& passages = layers.passages;
+  const double rocks = static_cast<double>(std::max<std::uint64_t>(result.trajectories, 1));
+  outcome.reach_probability.resize(passages.size());
+  for (std::size_t i = 0; i < passages.size(); ++i) {
+    outcome.reach_probability[i] =
+        passages.is_valid(i) ? static_cast<float>(passages[i] / rocks) : std::numeric_limits<float>::quiet_NaN();
   }
   return outcome;
 }

@@ -34,6 +34,10 @@ CLASSES = {
                           ["#ffffb2", "#fed976", "#feb24c", "#fd8d3c", "#f03b20", "#bd0026"]),
     "passages": ("", True, [1, 10, 100, 1000, 10000],
                  ["#eff3ff", "#c6dbef", "#6baed6", "#2171b5", "#084594", "#08306b"]),
+    # Release sources whose rocks reach a cell (Rockyfor3D's Nr_sourcecells): 1 is a single
+    # source, the rest roughly logarithmic steps.
+    "source_count": ("", True, [1, 5, 10, 50, 100, 500],
+                     ["#edf8fb", "#bfd3e6", "#9ebcda", "#8c96c6", "#8c6bb1", "#88419d", "#6e016b"]),
     "deposits": ("", True, [1, 10, 100, 1000, 10000],
                  ["#f2f0f7", "#dadaeb", "#bcbddc", "#9e9ac8", "#756bb1", "#54278f"]),
     "energy_max": ("kJ", False, ENERGY_KJ, ENERGY_COLOURS),

@@ -12,6 +12,7 @@
 #include "number_list.hpp"
 #include "parameter_table.hpp"
 #include "terminal_progress.hpp"
+#include "truncated_trajectories.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/layer_writer.hpp"
 #include "talus/gis/run_record.hpp"
@@ -136,8 +137,9 @@ std::string scenario_text(const RockfallOptions& o) {
 }
 
 void write_layers(gis::LayerWriter& writer, const RockfallLayers& layers) {
-  writer.add(layers.reach_probability, {"reach_probability", "Reach probability", ""});
+  writer.add(layers.reach_probability, {"reach_probability", "Reach probability per contributing source", ""});
   writer.add(layers.passages, {"passages", "Number of passages", ""});
+  writer.add(layers.source_count, {"source_count", "Number of release sources reaching the cell", ""});
   writer.add(layers.deposits, {"deposits", "Number of deposited rocks", ""});
   writer.add(layers.energy_max, {"energy_max", "Maximum kinetic energy", "kJ"});
   writer.add(layers.energy_p95, {"energy_p95", "95th percentile of kinetic energy over passages", "kJ"});
@@ -290,8 +292,13 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
                         {"fragments", result.fragments},
                         {"saved_trajectories", result.lines.size()}});
   record.set("runout", runout_summary(result.runouts));
+  const std::vector<std::string> trajectory_problems =
+      o.mode == "fast" ? truncated_trajectory_problems(result.stop_counts, "[fast_bounce] max_time", o.fast.max_time)
+                       : truncated_trajectory_problems(result.stop_counts, "[full] max_time", o.full.max_time);
+  std::vector<std::string> problems = scene.problems;
+  problems.insert(problems.end(), trajectory_problems.begin(), trajectory_problems.end());
   record.set("notes", scene.notes);
-  record.set("problems", scene.problems);
+  record.set("problems", problems);
   record.add_timing("read_inputs", read_seconds);
   record.add_timing("simulate", simulate_seconds);
   record.add_timing("write_layers", seconds_since(write_start));
@@ -306,7 +313,9 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
                 static_cast<unsigned long long>(result.stop_counts[r]));
   }
   if (result.fragments > 0) std::printf("; fragments from fractures %llu", static_cast<unsigned long long>(result.fragments));
-  std::printf("\nLayers written to %s (open the .tif files in QGIS: each has its style beside it)\n", o.out.c_str());
+  std::printf("\n");
+  for (const auto& problem : trajectory_problems) std::printf("problem: %s\n", problem.c_str());
+  std::printf("Layers written to %s (open the .tif files in QGIS: each has its style beside it)\n", o.out.c_str());
   return 0;
 }
 

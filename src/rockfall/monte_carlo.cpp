@@ -236,7 +236,7 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
         keep_failure(std::current_exception(), k);
         continue;
       }
-      recorder.commit();
+      recorder.commit(source_index);
       result.runouts[n] = observer.path_length();
       for (const StopReason reason : observer.stops()) ++stop_counts[static_cast<std::size_t>(reason)];
       fragments += observer.fragments();

@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -13,6 +16,7 @@
 #include "talus/hazard/cell_counts.hpp"
 #include "talus/hazard/cell_maxima.hpp"
 #include "talus/hazard/cell_quantiles.hpp"
+#include "talus/hazard/cell_source_sets.hpp"
 #include "talus/hazard/fixed_point_sums.hpp"
 #include "talus/hazard/log_binning.hpp"
 #include "talus/hazard/segment_cells.hpp"
@@ -33,7 +37,7 @@ LogBinning jump_height_binning() { return LogBinning(1e-3, 1e4, 20); }
 
 struct RockfallStatistics::Accumulators {
   explicit Accumulators(const Grid<double>& dem)
-      : spec(dem.spec()), valid(dem.size()), passages(dem.size()), deposits(dem.size()),
+      : spec(dem.spec()), valid(dem.size()), passages(dem.size()), sources(dem.size()), deposits(dem.size()),
         energy_max(dem.size()), velocity_max(dem.size()), energy(dem.size(), energy_binning()),
         jump_height(dem.size(), jump_height_binning()), friction(dem.size(), kLossQuantum),
         deformation(dem.size(), kLossQuantum) {
@@ -44,7 +48,9 @@ struct RockfallStatistics::Accumulators {
   GridSpec spec;                        // the DEM's grid with the layers' nodata
   std::vector<std::uint8_t> valid;      // 1 where the DEM has an elevation
   std::uint64_t rocks = 0;
+  std::vector<std::uint64_t> rocks_per_source;   // trajectories committed, by release source
   CellCounts passages;
+  CellSourceSets sources;               // release sources with a passage through the cell
   CellCounts deposits;
   CellMaxima energy_max;                // J
   CellMaxima velocity_max;              // m/s
@@ -64,7 +70,10 @@ void RockfallStatistics::merge(const RockfallStatistics& other) {
   const Accumulators& b = *other.accumulators_;
   require_same_grid(a.spec, b.spec, "merging rock-fall statistics");
   a.rocks += b.rocks;
+  if (a.rocks_per_source.size() < b.rocks_per_source.size()) a.rocks_per_source.resize(b.rocks_per_source.size(), 0);
+  for (std::size_t s = 0; s < b.rocks_per_source.size(); ++s) a.rocks_per_source[s] += b.rocks_per_source[s];
   a.passages.merge(b.passages);
+  a.sources.merge(b.sources);
   a.deposits.merge(b.deposits);
   a.energy_max.merge(b.energy_max);
   a.velocity_max.merge(b.velocity_max);
@@ -81,12 +90,18 @@ RockfallLayers RockfallStatistics::layers() const {
   if (a.friction.saturated() || a.deformation.saturated()) {
     throw NumericalFailure("rock-fall statistics: a cell's energy-loss sum left the range of 64-bit millijoules");
   }
-  RockfallLayers out{Grid<float>(a.spec), Grid<float>(a.spec), Grid<float>(a.spec),
+  RockfallLayers out{Grid<float>(a.spec), Grid<float>(a.spec), Grid<float>(a.spec), Grid<float>(a.spec),
                      Grid<float>(a.spec), Grid<float>(a.spec), Grid<float>(a.spec),
                      Grid<float>(a.spec), Grid<float>(a.spec), Grid<float>(a.spec)};
-  Grid<float>* const all[] = {&out.reach_probability, &out.passages, &out.deposits,
+  Grid<float>* const all[] = {&out.reach_probability, &out.passages, &out.source_count, &out.deposits,
                               &out.energy_max, &out.energy_p95, &out.jump_height_p95,
                               &out.velocity_max, &out.energy_loss_friction, &out.energy_loss_deformation};
+  // rocks_before[s]: trajectories of the sources before s, so that the rocks released from the
+  // sources first..last are rocks_before[last + 1] - rocks_before[first].
+  std::vector<std::uint64_t> rocks_before(a.rocks_per_source.size() + 1, 0);
+  for (std::size_t s = 0; s < a.rocks_per_source.size(); ++s) {
+    rocks_before[s + 1] = rocks_before[s] + a.rocks_per_source[s];
+  }
   const double rocks = static_cast<double>(a.rocks);
   const auto per_rock = [rocks](double value) { return rocks > 0 ? value / rocks : 0.0; };
   const auto f = [](double value) { return static_cast<float>(value); };
@@ -95,9 +110,17 @@ RockfallLayers RockfallStatistics::layers() const {
       for (Grid<float>* layer : all) (*layer)[i] = static_cast<float>(kLayerNodata);
       continue;
     }
+    // Passages over the rocks released from the sources that reached the cell (Rockyfor3D's
+    // Reach_probability, as a share; docs/hazard-statistics.md, "Reach probability and the
+    // sources that reach a cell").
+    std::uint64_t contributing_rocks = 0;
+    for (const SourceInterval& s : a.sources.intervals(i)) {
+      contributing_rocks += rocks_before[std::size_t{s.last} + 1] - rocks_before[s.first];
+    }
     const double passages = a.passages[i];
-    out.reach_probability[i] = f(per_rock(passages));
+    out.reach_probability[i] = contributing_rocks > 0 ? f(passages / static_cast<double>(contributing_rocks)) : 0.0f;
     out.passages[i] = f(passages);
+    out.source_count[i] = f(static_cast<double>(a.sources.count(i)));
     out.deposits[i] = f(a.deposits[i]);
     out.energy_max[i] = f(a.energy_max[i] / kJoulesPerKilojoule);
     out.energy_p95[i] = f(a.energy.quantile(i, kQuantile) / kJoulesPerKilojoule);
@@ -225,13 +248,21 @@ void RockfallStatistics::Recorder::on_fragment(const TrajectorySample& start) {
   state_->sample(start);
 }
 
-void RockfallStatistics::Recorder::commit() {
+void RockfallStatistics::Recorder::commit(std::uint64_t source) {
+  if (source >= std::numeric_limits<std::uint32_t>::max()) {
+    throw std::invalid_argument("rock-fall statistics: release source " + std::to_string(source) +
+                                " beyond 32-bit numbers");
+  }
   Accumulators& a = *statistics_.accumulators_;
+  const auto source_number = static_cast<std::uint32_t>(source);
+  if (a.rocks_per_source.size() <= source) a.rocks_per_source.resize(source + 1, 0);
+  ++a.rocks_per_source[source];
   for (const Passage& p : state_->passages) {
     const std::size_t cell = p.cell;
     if (!a.valid[cell]) continue;
     if (p.crossed) {
       a.passages.add(cell);
+      a.sources.add(cell, source_number);
       a.energy_max.add(cell, p.energy);
       a.velocity_max.add(cell, p.speed);
       a.energy.add(cell, p.energy);

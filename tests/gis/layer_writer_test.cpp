@@ -33,6 +33,7 @@ constexpr float kLayerNodata = -9999.0f;
 const std::vector<LayerDescription> kContractLayers = {
     {"reach_probability", "Reach probability", ""},
     {"passages", "Passages", ""},
+    {"source_count", "Release sources reaching the cell", ""},
     {"deposits", "Deposited rocks", ""},
     {"energy_max", "Maximum kinetic energy", "kJ"},
     {"energy_p95", "95th percentile of kinetic energy", "kJ"},

@@ -171,7 +171,7 @@ TEST(FullModelFracture, BlockDroppedOnTalusBreaksAtImpactIntoTwoDeposits) {
   EventLog log(&recorder);
   EnergyBalance balance;
   const StopReason reason = FullModel(parameters).run(ground, rock, start, log, balance);
-  recorder.commit();
+  recorder.commit(0);
 
   const std::vector<Event> fragments = log.of(Event::fragment);
   const std::vector<Event> stops = log.of(Event::stop);

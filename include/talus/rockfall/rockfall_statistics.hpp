@@ -1,9 +1,10 @@
 // The statistical map of paper 3.4 for rock fall, per DEM cell over all trajectories:
-// passages, reach probability, deposits, kinetic energy (max, 95th percentile over
-// passages), jump height (95th percentile over passages), velocity (max), and energy lost by
-// friction and by ground deformation. Built from per-cell accumulators in src/hazard whose
-// merge is exact and order-independent (integer counts, maxima, fixed-point sums,
-// logarithmic histograms), so merged statistics are bit-identical for any thread count.
+// passages, the release sources they came from, reach probability, deposits, kinetic energy
+// (max, 95th percentile over passages), jump height (95th percentile over passages), velocity
+// (max), and energy lost by friction and by ground deformation (docs/hazard-statistics.md).
+// Built from per-cell accumulators in src/hazard whose merge is exact and order-independent
+// (integer counts, source sets, maxima, fixed-point sums, logarithmic histograms), so merged
+// statistics are bit-identical for any thread count.
 #pragma once
 
 #include <cstdint>
@@ -15,8 +16,9 @@
 namespace talus {
 
 struct RockfallLayers {
-  Grid<float> reach_probability;        // - : passages / simulated rocks
+  Grid<float> reach_probability;        // - : passages / rocks released from the sources in source_count
   Grid<float> passages;                 // count of trajectories through the cell
+  Grid<float> source_count;             // count of release sources with at least one rock through the cell
   Grid<float> deposits;                 // count of rocks (fragments included) stopped in the cell
   Grid<float> energy_max;               // kJ
   Grid<float> energy_p95;               // kJ
@@ -39,7 +41,7 @@ class RockfallStatistics {
   std::uint64_t rocks() const;          // trajectories recorded
   RockfallLayers layers() const;
 
-  // Records one trajectory at a time: pass it to a TrajectoryModel, then commit().
+  // Records one trajectory at a time: pass it to a TrajectoryModel, then commit(source).
   class Recorder;
   Recorder recorder();
 
@@ -50,10 +52,10 @@ class RockfallStatistics {
 
 // Gathers one trajectory (cells crossed between consecutive samples by a grid walk, the
 // largest energy, jump height and speed per crossed cell, losses per cell, the stop cells) and
-// adds it to its statistics on commit(). A trajectory whose rock broke (paper fig. 4) counts once
-// per cell however many of its fragments crossed it (passages, reach probability, one energy and
-// jump height per passage: the largest over its fragments), and once in `rocks`; every fragment
-// that comes to rest counts as a deposit.
+// adds it to its statistics on commit(source). A trajectory whose rock broke (paper fig. 4)
+// counts once per cell however many of its fragments crossed it (passages, source count, reach
+// probability, one energy and jump height per passage: the largest over its fragments), and once
+// in `rocks`; every fragment that comes to rest counts as a deposit.
 class RockfallStatistics::Recorder final : public TrajectoryObserver {
  public:
   explicit Recorder(RockfallStatistics& statistics);
@@ -62,7 +64,9 @@ class RockfallStatistics::Recorder final : public TrajectoryObserver {
   void on_energy_loss(double x, double y, double friction, double deformation) override;
   void on_stop(const TrajectorySample& last, StopReason reason) override;
   void on_fragment(const TrajectorySample& start) override;
-  void commit();   // adds the trajectory and resets the recorder for the next one
+  // Adds the trajectory, released from release source `source` (0-based, as run_rockfall numbers
+  // them), and resets the recorder for the next one.
+  void commit(std::uint64_t source);
 
  private:
   struct Passage;

@@ -1,6 +1,7 @@
 // Tests of the rock-fall statistical map (paper 3.4, "Gathering simulation data"; layers of
-// DESIGN.md section 3): grid walk, per-passage statistics, deposits, units, nodata, and merges
-// that are bit-identical to a single accumulation whatever the split and the order.
+// DESIGN.md section 3; docs/hazard-statistics.md): grid walk, per-passage statistics, sources
+// per cell and the reach probability over their rocks, deposits, units, nodata, and merges that
+// are bit-identical to a single accumulation whatever the split and the order.
 #include "talus/rockfall/rockfall_statistics.hpp"
 
 #include <algorithm>
@@ -8,8 +9,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -67,13 +70,21 @@ struct Trajectory {
   std::vector<Event> events;
   TrajectorySample last;
   StopReason reason = StopReason::at_rest;
+  std::uint64_t source = 0;
 };
+
+// Trajectories are released kRunsPerSource at a time from consecutive sources, as run_rockfall
+// numbers them; 7 does not divide the chunks the merge tests split the runs into, so that the
+// runs of some sources are recorded by two statistics.
+constexpr std::size_t kRunsPerSource = 7;
 
 std::vector<Trajectory> random_trajectories(std::size_t count, std::uint64_t seed) {
   std::mt19937_64 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Trajectory> trajectories(count);
-  for (Trajectory& t : trajectories) {
+  for (std::size_t k = 0; k < count; ++k) {
+    Trajectory& t = trajectories[k];
+    t.source = k / kRunsPerSource;
     double u = 1.0 + unit(random) * (kWidth - 2);
     double v = 0.5 + unit(random) * 2.0;
     const int samples = 5 + static_cast<int>(unit(random) * 60);
@@ -107,7 +118,7 @@ void record(RockfallStatistics::Recorder& recorder, const Trajectory& t) {
     }
   }
   recorder.on_stop(t.last, t.reason);
-  recorder.commit();
+  recorder.commit(t.source);
 }
 
 RockfallStatistics record_all(const Grid<double>& dem, const std::vector<Trajectory>& trajectories,
@@ -119,12 +130,12 @@ RockfallStatistics record_all(const Grid<double>& dem, const std::vector<Traject
 }
 
 std::vector<const Grid<float>*> all_layers(const RockfallLayers& l) {
-  return {&l.reach_probability, &l.passages, &l.deposits, &l.energy_max, &l.energy_p95,
+  return {&l.reach_probability, &l.passages, &l.source_count, &l.deposits, &l.energy_max, &l.energy_p95,
           &l.jump_height_p95, &l.velocity_max, &l.energy_loss_friction, &l.energy_loss_deformation};
 }
 
-const char* const kLayerNames[] = {"reach_probability", "passages", "deposits", "energy_max", "energy_p95",
-                                   "jump_height_p95", "velocity_max", "energy_loss_friction",
+const char* const kLayerNames[] = {"reach_probability", "passages", "source_count", "deposits", "energy_max",
+                                   "energy_p95", "jump_height_p95", "velocity_max", "energy_loss_friction",
                                    "energy_loss_deformation"};
 
 void expect_same_bits(const RockfallLayers& a, const RockfallLayers& b, const std::string& what) {
@@ -204,18 +215,65 @@ TEST(RockfallStatistics, LayersAreDeterministic) {
   expect_same_bits(a.layers(), record_all(dem, trajectories).layers(), "two runs");
 }
 
-TEST(RockfallStatistics, ReachProbabilityIsPassagesOverRocks) {
+// The oracle: each trajectory recorded alone tells the cells it crossed; a cell's sources are
+// those of the trajectories that crossed it, and its reach probability is its passages over
+// the rocks of those sources.
+TEST(RockfallStatistics, SourceCountAndReachProbabilityFollowTheSourcesThatReachACell) {
   const Grid<double> dem = test_dem();
   const std::vector<Trajectory> trajectories = random_trajectories(250, 5);
+  std::vector<std::set<std::uint64_t>> sources(dem.size());
+  std::map<std::uint64_t, double> rocks_of;
+  for (const Trajectory& t : trajectories) {
+    const RockfallLayers alone = record_all(dem, {t}).layers();
+    for (std::size_t i = 0; i < dem.size(); ++i) {
+      if (alone.passages[i] > 0) sources[i].insert(t.source);
+    }
+    rocks_of[t.source] += 1;
+  }
   const RockfallLayers layers = record_all(dem, trajectories).layers();
-  float reached = 0;
+  std::size_t shared = 0;
   for (std::size_t i = 0; i < dem.size(); ++i) {
     if (!dem.is_valid(i)) continue;
-    EXPECT_EQ(layers.reach_probability[i], static_cast<float>(layers.passages[i] / 250.0));
-    EXPECT_LE(layers.passages[i], 250.0f);
-    reached = std::max(reached, layers.passages[i]);
+    double rocks = 0;
+    for (const std::uint64_t s : sources[i]) rocks += rocks_of[s];
+    EXPECT_EQ(layers.source_count[i], static_cast<float>(sources[i].size())) << "cell " << i;
+    const float expected = rocks > 0 ? static_cast<float>(layers.passages[i] / rocks) : 0.0f;
+    EXPECT_EQ(layers.reach_probability[i], expected) << "cell " << i;
+    EXPECT_LE(layers.reach_probability[i], 1.0f);
+    shared += sources[i].size() > 1;
   }
-  EXPECT_GT(reached, 10.0f);
+  EXPECT_GT(shared, 20u);   // many cells are reached from several sources
+}
+
+// Unlike passages over every simulated rock, the reach probability does not fall when sources
+// whose rocks never come near a cell are added, and it weighs each source by its own runs.
+TEST(RockfallStatistics, ReachProbabilityCountsOnlyTheRocksOfTheSourcesThatReachTheCell) {
+  const Grid<double> dem = test_dem();
+  RockfallStatistics statistics(dem);
+  RockfallStatistics::Recorder recorder = statistics.recorder();
+  const auto roll = [&](double u0, double u1, double v, std::uint64_t source) {
+    recorder.on_sample(sample_at(u0, v, 100.0, 0.1, 1.0));
+    recorder.on_stop(sample_at(u1, v, 0.0, 0.0, 0.0), StopReason::at_rest);
+    recorder.commit(source);
+  };
+  // Source 0: 2 rocks, both through cell (5, 2). Source 3: 6 rocks, 3 of them through (5, 2).
+  roll(3.5, 5.5, 2.5, 0);
+  roll(3.5, 6.5, 2.5, 0);
+  for (int k = 0; k < 6; ++k) roll(k < 3 ? 7.5 : 8.5, k < 3 ? 5.5 : 9.5, 2.5, 3);
+  // Source 1: 40 rocks far away, in row 8.
+  for (int k = 0; k < 40; ++k) roll(1.5, 2.5, 8.5, 1);
+  const RockfallLayers layers = statistics.layers();
+  EXPECT_EQ(statistics.rocks(), 48u);
+  EXPECT_EQ(layers.passages.at(5, 2), 5.0f);
+  EXPECT_EQ(layers.source_count.at(5, 2), 2.0f);
+  EXPECT_EQ(layers.reach_probability.at(5, 2), static_cast<float>(5.0 / 8.0));
+  EXPECT_EQ(layers.reach_probability.at(3, 2), 1.0f);      // both rocks of source 0, none of source 3
+  EXPECT_EQ(layers.source_count.at(3, 2), 1.0f);
+  EXPECT_EQ(layers.reach_probability.at(9, 2), 0.5f);      // 3 of the 6 rocks of source 3
+  EXPECT_EQ(layers.reach_probability.at(1, 8), 1.0f);
+  EXPECT_EQ(layers.source_count.at(1, 8), 1.0f);
+  EXPECT_EQ(layers.source_count.at(0, 0), 0.0f);
+  EXPECT_EQ(layers.reach_probability.at(0, 0), 0.0f);
 }
 
 TEST(RockfallStatistics, DepositsOnlyForRocksAtRest) {
@@ -242,7 +300,7 @@ TEST(RockfallStatistics, DepositsOnlyForRocksAtRest) {
   for (const StopReason reason : {StopReason::at_rest, StopReason::max_time, StopReason::left_dem, StopReason::nodata_area}) {
     recorder.on_sample(sample_at(2.5, 2.5, 100.0, 0.5, 1.0));
     recorder.on_stop(sample_at(3.5, 2.5, 0.0, 0.5, 0.0), reason);
-    recorder.commit();
+    recorder.commit(0);
   }
   const RockfallLayers one = statistics.layers();
   EXPECT_EQ(one.deposits.at(3, 2), 1.0f);
@@ -259,7 +317,7 @@ TEST(RockfallStatistics, NodataCellsAreNodataAndUnreachedCellsZero) {
   recorder.on_energy_loss(x_at(9.5), y_at(6.5), 500.0, 800.0);
   recorder.on_sample(sample_at(11.5, 6.5, 1e5, 1.0, 10.0));
   recorder.on_stop(sample_at(11.5, 6.5, 0.0, 0.5, 0.0), StopReason::at_rest);
-  recorder.commit();
+  recorder.commit(0);
   const RockfallLayers layers = statistics.layers();
   for (const Grid<float>* layer : all_layers(layers)) {
     EXPECT_EQ(layer->spec().nodata, -9999.0);
@@ -284,11 +342,11 @@ TEST(RockfallStatistics, EnergiesInKilojoulesAndLossesMeanPerSimulatedRock) {
   recorder.on_sample(sample_at(2.6, 1.5, 2.5e5, 1.5, 12.0));
   recorder.on_energy_loss(x_at(2.6), y_at(1.5), 1000.0, 0.0);
   recorder.on_stop(sample_at(2.6, 1.5, 2.5e5, 1.5, 12.0), StopReason::max_time);
-  recorder.commit();
+  recorder.commit(0);
   // Rock 2 elsewhere.
   recorder.on_sample(sample_at(6.5, 7.5, 10.0, 0.0, 1.0));
   recorder.on_stop(sample_at(6.5, 7.5, 0.0, 0.0, 0.0), StopReason::at_rest);
-  recorder.commit();
+  recorder.commit(0);
   EXPECT_EQ(statistics.rocks(), 2u);
   const RockfallLayers layers = statistics.layers();
   EXPECT_EQ(layers.energy_max.at(2, 1), 250.0f);
@@ -317,11 +375,11 @@ TEST(RockfallStatistics, LongSegmentsReachEveryCellTheyCross) {
   recorder.on_sample(sample_at(0.5, 3.5, 0.0, 0.0, 0.0));
   recorder.on_sample(sample_at(8.5, 3.5, 8000.0, 2.0, 16.0));
   recorder.on_stop(sample_at(8.5, 3.5, 8000.0, 2.0, 16.0), StopReason::max_time);
-  recorder.commit();
+  recorder.commit(0);
   // And a diagonal one through lattice corners, (0.5, 4.5) -> (5.5, 9.5): only the diagonal cells.
   recorder.on_sample(sample_at(0.5, 4.5, 1.0, 0.0, 1.0));
   recorder.on_stop(sample_at(5.5, 9.5, 1.0, 0.0, 1.0), StopReason::max_time);
-  recorder.commit();
+  recorder.commit(0);
   const RockfallLayers layers = statistics.layers();
   for (int col = 0; col < kWidth; ++col) {
     const bool crossed = col <= 8;
@@ -345,7 +403,7 @@ TEST(RockfallStatistics, APassageCountsOncePerTrajectory) {
   // Back and forth between cells (4, 4) and (5, 4) five times.
   for (int k = 0; k < 10; ++k) recorder.on_sample(sample_at(k % 2 ? 5.5 : 4.5, 4.5, 100.0 * (k + 1), 0.1, 1.0));
   recorder.on_stop(sample_at(5.5, 4.5, 0.0, 0.0, 0.0), StopReason::at_rest);
-  recorder.commit();
+  recorder.commit(0);
   const RockfallLayers layers = statistics.layers();
   EXPECT_EQ(layers.passages.at(4, 4), 1.0f);
   EXPECT_EQ(layers.passages.at(5, 4), 1.0f);
@@ -376,7 +434,7 @@ TEST(RockfallStatistics, FragmentsShareOnePassagePerCellAndDepositEach) {
   recorder.on_sample(sample_at(3.5, 4.5, 100.0, 1.0, 3.0));
   recorder.on_sample(sample_at(3.5, 1.5, 50.0, 1.0, 1.0));
   recorder.on_stop(sample_at(3.5, 1.5, 0.0, 0.0, 0.0), StopReason::at_rest);
-  recorder.commit();
+  recorder.commit(0);
   const RockfallLayers layers = statistics.layers();
   const auto at = [](const Grid<float>& layer, int col, int row) { return layer.at(col, row); };
   EXPECT_EQ(statistics.rocks(), 1u);

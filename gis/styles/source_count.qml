@@ -1,0 +1,86 @@
+<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>
+<qgis version="3.22.16-Białowieża" styleCategories="AllStyleCategories" hasScaleBasedVisibilityFlag="0" maxScale="0" minScale="1e+08">
+  <flags>
+    <Identifiable>1</Identifiable>
+    <Removable>1</Removable>
+    <Searchable>1</Searchable>
+    <Private>0</Private>
+  </flags>
+  <temporal mode="0" fetchMode="0" enabled="0">
+    <fixedRange>
+      <start></start>
+      <end></end>
+    </fixedRange>
+  </temporal>
+  <customproperties>
+    <Option type="Map">
+      <Option type="QString" value="Value" name="identify/format"/>
+    </Option>
+  </customproperties>
+  <pipe-data-defined-properties>
+    <Option type="Map">
+      <Option type="QString" value="" name="name"/>
+      <Option name="properties"/>
+      <Option type="QString" value="collection" name="type"/>
+    </Option>
+  </pipe-data-defined-properties>
+  <pipe>
+    <provider>
+      <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
+    </provider>
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="500" opacity="1" alphaBand="-1">
+      <minMaxOrigin>
+        <limits>None</limits>
+        <extent>WholeRaster</extent>
+        <statAccuracy>Estimated</statAccuracy>
+        <cumulativeCutLower>0.02</cumulativeCutLower>
+        <cumulativeCutUpper>0.98</cumulativeCutUpper>
+        <stdDevFactor>2</stdDevFactor>
+      </minMaxOrigin>
+      <rastershader>
+        <colorrampshader labelPrecision="0" minimumValue="0" clip="0" maximumValue="500" classificationMode="1" colorRampType="DISCRETE">
+          <colorramp type="gradient" name="[source]">
+            <Option type="Map">
+              <Option type="QString" value="237,248,251,255" name="color1"/>
+              <Option type="QString" value="110,1,107,255" name="color2"/>
+              <Option type="QString" value="1" name="discrete"/>
+              <Option type="QString" value="gradient" name="rampType"/>
+              <Option type="QString" value="0.142857;191,211,230,255:0.285714;158,188,218,255:0.428571;140,150,198,255:0.571429;140,107,177,255:0.714286;136,65,157,255:0.857143;110,1,107,255" name="stops"/>
+            </Option>
+            <prop v="237,248,251,255" k="color1"/>
+            <prop v="110,1,107,255" k="color2"/>
+            <prop v="1" k="discrete"/>
+            <prop v="gradient" k="rampType"/>
+            <prop v="0.142857;191,211,230,255:0.285714;158,188,218,255:0.428571;140,150,198,255:0.571429;140,107,177,255:0.714286;136,65,157,255:0.857143;110,1,107,255" k="stops"/>
+          </colorramp>
+          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
+          <item label="1" alpha="255" value="1" color="#edf8fb"/>
+          <item label="2 - 5" alpha="255" value="5" color="#bfd3e6"/>
+          <item label="6 - 10" alpha="255" value="10" color="#9ebcda"/>
+          <item label="11 - 50" alpha="255" value="50" color="#8c96c6"/>
+          <item label="51 - 100" alpha="255" value="100" color="#8c6bb1"/>
+          <item label="101 - 500" alpha="255" value="500" color="#88419d"/>
+          <item label="&gt; 500" alpha="255" value="inf" color="#6e016b"/>
+          <rampLegendSettings useContinuousLegend="0" direction="0" prefix="" minimumLabel="" orientation="2" suffix="" maximumLabel="">
+            <numericFormat id="basic">
+              <Option type="Map">
+                <Option type="QChar" value="" name="decimal_separator"/>
+                <Option type="int" value="6" name="decimals"/>
+                <Option type="int" value="0" name="rounding_type"/>
+                <Option type="bool" value="false" name="show_plus"/>
+                <Option type="bool" value="true" name="show_thousand_separator"/>
+                <Option type="bool" value="false" name="show_trailing_zeros"/>
+                <Option type="QChar" value="" name="thousand_separator"/>
+              </Option>
+            </numericFormat>
+          </rampLegendSettings>
+        </colorrampshader>
+      </rastershader>
+    </rasterrenderer>
+    <brightnesscontrast gamma="1" contrast="0" brightness="0"/>
+    <huesaturation grayscaleMode="0" colorizeGreen="128" colorizeStrength="100" colorizeOn="0" colorizeRed="255" invertColors="0" colorizeBlue="128" saturation="0"/>
+    <rasterresampler maxOversampling="2"/>
+    <resamplingStage>resamplingFilter</resamplingStage>
+  </pipe>
+  <blendMode>0</blendMode>
+</qgis>

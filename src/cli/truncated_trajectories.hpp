@@ -1,0 +1,19 @@
+// The problems a rock-fall run reports about trajectories cut short (issue 17, item 5): rocks
+// stopped by the edge of the DEM's valid area (nodata cells), by the edge of the DEM, or by the
+// simulated time limit, whose paths the layers do not follow to their end.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace talus::cli {
+
+// One problem line per cause that stopped at least one rock, in the form of the scene's
+// problems ("trajectories: N of M rocks (S %) ..."). stop_counts: by StopReason, every fragment's
+// stop counted (RockfallResult::stop_counts); max_time_key and max_time_s: the time limit's
+// parameter as `talus params` names it ("[fast_bounce] max_time") and its value.
+std::vector<std::string> truncated_trajectory_problems(const std::vector<std::uint64_t>& stop_counts,
+                                                       const std::string& max_time_key, double max_time_s);
+
+}  // namespace talus::cli
