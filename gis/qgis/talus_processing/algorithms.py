@@ -5,13 +5,12 @@ the algorithm's error, and the styled layers added to the project; `talus info` 
 import os
 import re
 import subprocess
-import tempfile
 
 from qgis.core import (QgsProcessing, QgsProcessingAlgorithm, QgsProcessingContext, QgsProcessingException,
                        QgsProcessingOutputString, QgsProcessingParameterBoolean, QgsProcessingParameterDefinition,
                        QgsProcessingParameterFolderDestination, QgsProcessingParameterMapLayer,
                        QgsProcessingParameterNumber, QgsProcessingParameterRasterLayer, QgsProcessingParameterString,
-                       QgsProviderRegistry)
+                       QgsProcessingUtils, QgsProviderRegistry)
 
 PROGRESS = re.compile(r"^Progress: (\d+)%")
 
@@ -154,8 +153,9 @@ class TalusRunAlgorithm(QgsProcessingAlgorithm):
                     arguments += [flag, file_of(layer)]
         scenario = self._scenario(parameters, context)
         if scenario:
-            handle, path = tempfile.mkstemp(suffix=".toml", prefix=f"talus_{self.command}_")
-            with os.fdopen(handle, "w", encoding="utf-8") as f:
+            # In Processing's temporary folder, which QGIS removes when it quits.
+            path = QgsProcessingUtils.generateTempFilename(f"talus_{self.command}_scenario.toml")
+            with open(path, "w", encoding="utf-8") as f:
                 f.write(scenario)
             arguments += ["--scenario", path]
             feedback.pushInfo(f"scenario {path}:\n{scenario}")

@@ -48,7 +48,11 @@ class TalusProvider(QgsProcessingProvider):
         if program is None:
             self._problem = f"the talus program was not found: put it on PATH or set {PROGRAM_VARIABLE}"
             return
-        table = program_parameters(program)
+        try:
+            table = program_parameters(program)
+        except (OSError, RuntimeError, ValueError, subprocess.TimeoutExpired) as error:
+            self._problem = f"the talus program's parameters could not be read: {error}"
+            return
         self.addAlgorithm(TalusRunAlgorithm("rockfall", table["rockfall"]))
         self.addAlgorithm(TalusRunAlgorithm("mudflow", table["mudflow"]))
         self.addAlgorithm(TalusInfoAlgorithm())
