@@ -102,6 +102,57 @@ std::string limit_text(double value) {
   return text.str();
 }
 
+// The elements of the particles' style (temporal settings, renderer, aliases), shared by the QML
+// style and the layer definition.
+std::string style_elements() {
+  std::ostringstream qml;
+  qml << "  <temporal enabled=\"1\" mode=\"2\" startField=\"start_time\" endField=\"end_time\" startExpression=\"\" "
+         "endExpression=\"\" durationField=\"\" durationUnit=\"s\" fixedDuration=\"0\" accumulate=\"0\" limitMode=\"0\">\n"
+      << "    <fixedRange>\n      <start></start>\n      <end></end>\n    </fixedRange>\n  </temporal>\n"
+      << "  <renderer-v2 type=\"graduatedSymbol\" attr=\"depth_m\" graduatedMethod=\"GraduatedColor\" symbollevels=\"0\" "
+         "enableorderby=\"0\" forceraster=\"0\" referencescale=\"-1\">\n    <ranges>\n";
+  for (std::size_t k = 0; k < kDepthColours.size(); ++k) {
+    const std::string lower = k == 0 ? "0" : limit_text(kDepthLimits[k - 1]);
+    const std::string upper = k < kDepthLimits.size() ? limit_text(kDepthLimits[k]) : "inf";
+    const std::string label = k < kDepthLimits.size() ? lower + " - " + upper + " m" : "&gt; " + lower + " m";
+    qml << "      <range symbol=\"" << k << "\" label=\"" << label << "\" lower=\"" << lower << "\" upper=\"" << upper
+        << "\" render=\"true\"/>\n";
+  }
+  qml << "    </ranges>\n    <symbols>\n";
+  for (std::size_t k = 0; k < kDepthColours.size(); ++k) {
+    qml << "      <symbol type=\"marker\" name=\"" << k << "\" alpha=\"1\" clip_to_extent=\"1\" force_rhr=\"0\">\n"
+        << "        <layer class=\"SimpleMarker\" enabled=\"1\" locked=\"0\" pass=\"0\">\n"
+        << "          <prop k=\"name\" v=\"circle\"/>\n"
+        << "          <prop k=\"color\" v=\"" << kDepthColours[k] << ",255\"/>\n"
+        << "          <prop k=\"outline_style\" v=\"no\"/>\n"
+        << "          <prop k=\"size\" v=\"1.6\"/>\n"
+        << "          <prop k=\"size_unit\" v=\"MM\"/>\n"
+        << "        </layer>\n      </symbol>\n";
+  }
+  qml << "    </symbols>\n  </renderer-v2>\n  <aliases>\n";
+  for (std::size_t i = 0; i < kFields.size(); ++i) {
+    qml << "    <alias field=\"" << kFields[i].name << "\" index=\"" << i + 1 << "\" name=\"" << kFields[i].alias << "\"/>\n";
+  }
+  qml << "  </aliases>\n  <layerGeometryType>0</layerGeometryType>\n";
+  return qml.str();
+}
+
+// `text` with the five XML special characters escaped.
+std::string xml_escaped(const std::string& text) {
+  std::string escaped;
+  for (const char c : text) {
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      case '\'': escaped += "&apos;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
 }  // namespace
 
 std::optional<std::int64_t> parse_snapshot_start(const std::string& text) {
@@ -161,61 +212,6 @@ void write_particle_snapshots(const std::filesystem::path& path, const std::vect
     throw;
   }
 }
-
-namespace {
-
-// The elements of the particles' style (temporal settings, renderer, aliases), shared by the QML
-// style and the layer definition.
-std::string style_elements() {
-  std::ostringstream qml;
-  qml << "  <temporal enabled=\"1\" mode=\"2\" startField=\"start_time\" endField=\"end_time\" startExpression=\"\" "
-         "endExpression=\"\" durationField=\"\" durationUnit=\"s\" fixedDuration=\"0\" accumulate=\"0\" limitMode=\"0\">\n"
-      << "    <fixedRange>\n      <start></start>\n      <end></end>\n    </fixedRange>\n  </temporal>\n"
-      << "  <renderer-v2 type=\"graduatedSymbol\" attr=\"depth_m\" graduatedMethod=\"GraduatedColor\" symbollevels=\"0\" "
-         "enableorderby=\"0\" forceraster=\"0\" referencescale=\"-1\">\n    <ranges>\n";
-  for (std::size_t k = 0; k < kDepthColours.size(); ++k) {
-    const std::string lower = k == 0 ? "0" : limit_text(kDepthLimits[k - 1]);
-    const std::string upper = k < kDepthLimits.size() ? limit_text(kDepthLimits[k]) : "inf";
-    const std::string label = k < kDepthLimits.size() ? lower + " - " + upper + " m" : "&gt; " + lower + " m";
-    qml << "      <range symbol=\"" << k << "\" label=\"" << label << "\" lower=\"" << lower << "\" upper=\"" << upper
-        << "\" render=\"true\"/>\n";
-  }
-  qml << "    </ranges>\n    <symbols>\n";
-  for (std::size_t k = 0; k < kDepthColours.size(); ++k) {
-    qml << "      <symbol type=\"marker\" name=\"" << k << "\" alpha=\"1\" clip_to_extent=\"1\" force_rhr=\"0\">\n"
-        << "        <layer class=\"SimpleMarker\" enabled=\"1\" locked=\"0\" pass=\"0\">\n"
-        << "          <prop k=\"name\" v=\"circle\"/>\n"
-        << "          <prop k=\"color\" v=\"" << kDepthColours[k] << ",255\"/>\n"
-        << "          <prop k=\"outline_style\" v=\"no\"/>\n"
-        << "          <prop k=\"size\" v=\"1.6\"/>\n"
-        << "          <prop k=\"size_unit\" v=\"MM\"/>\n"
-        << "        </layer>\n      </symbol>\n";
-  }
-  qml << "    </symbols>\n  </renderer-v2>\n  <aliases>\n";
-  for (std::size_t i = 0; i < kFields.size(); ++i) {
-    qml << "    <alias field=\"" << kFields[i].name << "\" index=\"" << i + 1 << "\" name=\"" << kFields[i].alias << "\"/>\n";
-  }
-  qml << "  </aliases>\n  <layerGeometryType>0</layerGeometryType>\n";
-  return qml.str();
-}
-
-// `text` with the five XML special characters escaped.
-std::string xml_escaped(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&apos;"; break;
-      default: escaped += c;
-    }
-  }
-  return escaped;
-}
-
-}  // namespace
 
 std::string particle_style() {
   return "<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>\n"
