@@ -46,6 +46,10 @@ struct MudflowOptions {
   std::vector<std::string> command_line;
 };
 
+// Particle snapshots: the closest interval (s) and the most snapshots a run writes.
+constexpr double kMinSnapshotInterval = 0.01;
+constexpr double kMaxSnapshots = 100000.0;
+
 // The parameters that have a command-line flag: a flag given pins its parameter against the
 // scenario file, and messages about the parameter name the flag.
 struct Flag {
@@ -264,8 +268,13 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(s.arrival_depth > 0.0, "outputs", "arrival_depth", s.arrival_depth, "expected a depth > 0 m");
   check.require(s.map_interval > 0.0, "outputs", "map_interval", s.map_interval, "expected an interval > 0 s");
   const bool snapshots_flag = table.given_on_command_line("outputs", "snapshot_interval");
-  check.require(snapshots_flag ? s.snapshot_interval > 0.0 : s.snapshot_interval >= 0.0, "outputs", "snapshot_interval",
-                s.snapshot_interval, snapshots_flag ? "expected an interval > 0 s" : "expected 0 (none) or an interval > 0 s");
+  // At least kMinSnapshotInterval apart and at most kMaxSnapshots in the run, so that a tiny
+  // interval is refused now, not after the whole flow when particles.gpkg is written (issue 18).
+  const bool snapshot_ok = s.snapshot_interval >= kMinSnapshotInterval && s.duration / s.snapshot_interval <= kMaxSnapshots;
+  check.require(snapshots_flag ? snapshot_ok : (s.snapshot_interval == 0.0 || snapshot_ok), "outputs",
+                "snapshot_interval", s.snapshot_interval,
+                std::string(snapshots_flag ? "expected an interval" : "expected 0 (none) or an interval") +
+                    " of at least 0.01 s and at most 100000 snapshots over --duration");
   const std::optional<std::int64_t> start = gis::parse_snapshot_start(o.snapshot_start);
   check.require(start.has_value(), "outputs", "snapshot_start", o.snapshot_start,
                 "expected a date-time YYYY-MM-DDTHH:MM:SS, years 1000-9999");
