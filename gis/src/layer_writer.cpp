@@ -1,6 +1,6 @@
 // LayerWriter: builds each layer in a GDAL MEM dataset (Float32, nodata -9999, description, unit,
 // metadata, exact statistics) and copies it with the COG driver to a hidden temporary name beside
-// its QML style; commit() renames the set. docs/layers.md describes the format.
+// its QML style and QGIS metadata; commit() renames the set. docs/layers.md describes the format.
 #include "talus/gis/layer_writer.hpp"
 
 #include <cpl_error.h>
@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <ctime>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -18,6 +20,7 @@
 
 #include "talus/core/errors.hpp"
 #include "talus/gis/gdal_dataset.hpp"
+#include "talus/gis/layer_metadata_file.hpp"
 
 namespace talus::gis {
 namespace {
@@ -53,6 +56,42 @@ void check(CPLErr result, const std::filesystem::path& layer, const std::string&
   if (result != CE_None) gdal_failure(layer, step);
 }
 
+std::string band_description(const LayerDescription& layer) {
+  return layer.unit.empty() ? layer.description : layer.description + " (" + layer.unit + ")";
+}
+
+// The title and abstract QGIS shows for the layer (layer_metadata_file.hpp).
+LayerMetadataText layer_metadata(const LayerDescription& layer, const std::map<std::string, std::string>& metadata,
+                                 const std::string& written_at) {
+  const auto item = [&](const char* key) {
+    const auto found = metadata.find(key);
+    return found == metadata.end() ? std::string() : found->second;
+  };
+  const std::string process = item("TALUS_PROCESS");
+  LayerMetadataText text;
+  text.identifier = layer.name;
+  text.title = process.empty() ? layer.description : layer.description + " (" + process + ")";
+  text.abstract = band_description(layer) + (process.empty() ? "" : ", " + process + " hazard layer") +
+                  " written by Talus " + TALUS_VERSION + " on " + written_at + ".";
+  if (const std::string scenario = item("TALUS_SCENARIO"); !scenario.empty()) text.abstract += " Scenario: " + scenario + ".";
+  text.abstract += " Cells never reached are 0, cells outside the DEM's valid area nodata; run.json beside the layer "
+                   "records every input and parameter.";
+  text.keywords = {"Talus", "natural hazards"};
+  if (!process.empty()) text.keywords.push_back(process);
+  text.history = "Talus " + std::string(TALUS_VERSION) + ", " + written_at;
+  return text;
+}
+
+// Now as an ISO 8601 UTC date and time, e.g. 2026-12-02T06:40:00Z.
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
 // The layer in memory: values, georeferencing, band properties, metadata and statistics.
 GDALDatasetUniquePtr in_memory(const Grid<float>& values, const LayerDescription& layer,
                                const std::map<std::string, std::string>& metadata,
@@ -80,7 +119,8 @@ GDALDatasetUniquePtr in_memory(const Grid<float>& values, const LayerDescription
           final_path, "writing the values");
   }
   check(band->SetNoDataValue(kLayerNodata), final_path, "setting nodata");
-  band->SetDescription(layer.description.c_str());
+  // The unit goes into the description too: QGIS heads a layer's legend with it.
+  band->SetDescription(band_description(layer).c_str());
   check(band->SetUnitType(layer.unit.c_str()), final_path, "setting the unit");
   // Exact statistics land in the band's STATISTICS_* metadata; GDAL has none to give without a
   // valid cell, and QGIS computes its own then.
@@ -130,7 +170,7 @@ void remove_quietly(const std::filesystem::path& path) {
 }  // namespace
 
 LayerWriter::LayerWriter(std::filesystem::path out_dir, std::map<std::string, std::string> metadata)
-    : out_dir_(std::move(out_dir)), metadata_(std::move(metadata)) {
+    : out_dir_(std::move(out_dir)), metadata_(std::move(metadata)), written_at_(utc_now()) {
   metadata_["TALUS_VERSION"] = TALUS_VERSION;
   std::error_code error;
   std::filesystem::create_directories(out_dir_, error);
@@ -154,12 +194,13 @@ std::filesystem::path LayerWriter::temporary_path(const std::string& file_name) 
 }
 
 void LayerWriter::add(const Grid<float>& values, const LayerDescription& layer) {
-  const auto style = embedded_style(layer.name);
+  const auto style = layer.style_qml.empty() ? embedded_style(layer.name) : std::string_view(layer.style_qml);
   if (!style) throw std::logic_error("no QML style in gis/styles for layer " + layer.name);
   const auto final_path = out_dir_ / (layer.name + ".tif");
   const auto first_new = pending_.size();
   const auto tif = temporary_path(layer.name + ".tif");
   const auto qml = temporary_path(layer.name + ".qml");
+  const auto qmd = temporary_path(layer.name + ".qmd");
   CPLErrorReset();
   try {
     const auto dataset = in_memory(values, layer, metadata_, final_path);
@@ -170,6 +211,7 @@ void LayerWriter::add(const Grid<float>& values, const LayerDescription& layer) 
     written.reset();  // closes the file; GDAL 3.6 reports a failed close through the error state only
     if (!copied || CPLGetLastErrorType() == CE_Failure) gdal_failure(final_path, "writing the Cloud Optimized GeoTIFF");
     write_text(qml, *style, out_dir_ / (layer.name + ".qml"));
+    write_text(qmd, qgis_layer_metadata(layer_metadata(layer, metadata_, written_at_)), out_dir_ / (layer.name + ".qmd"));
   } catch (...) {
     while (pending_.size() > first_new) {
       remove_quietly(pending_.back().first);

@@ -25,6 +25,7 @@
 #include <utility>
 
 #include "talus/gis/gdal_dataset.hpp"
+#include "talus/gis/xml_text.hpp"
 
 namespace talus::gis {
 namespace {
@@ -135,22 +136,6 @@ std::string style_elements() {
   }
   qml << "  </aliases>\n  <layerGeometryType>0</layerGeometryType>\n";
   return qml.str();
-}
-
-// `text` with the five XML special characters escaped.
-std::string xml_escaped(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&apos;"; break;
-      default: escaped += c;
-    }
-  }
-  return escaped;
 }
 
 }  // namespace

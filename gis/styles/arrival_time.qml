@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="600" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="600" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.125;244,109,67,255:0.25;253,174,97,255:0.375;254,224,139,255:0.5;230,245,152,255:0.625;171,221,164,255:0.75;102,194,165,255:0.875;50,136,189,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 5 s" alpha="255" value="5" color="#d53e4f"/>
+          <item label="≤ 5 s" alpha="255" value="5" color="#d53e4f"/>
           <item label="5 - 10 s" alpha="255" value="10" color="#f46d43"/>
           <item label="10 - 30 s" alpha="255" value="30" color="#fdae61"/>
           <item label="30 - 60 s" alpha="255" value="60" color="#fee08b"/>

@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="2" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="2" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.142857;254,227,145,255:0.285714;254,196,79,255:0.428571;254,153,41,255:0.571429;236,112,20,255:0.714286;204,76,2,255:0.857143;140,45,4,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 0.05 m" alpha="255" value="0.05" color="#ffffd4"/>
+          <item label="≤ 0.05 m" alpha="255" value="0.05" color="#ffffd4"/>
           <item label="0.05 - 0.1 m" alpha="255" value="0.1" color="#fee391"/>
           <item label="0.1 - 0.25 m" alpha="255" value="0.25" color="#fec44f"/>
           <item label="0.25 - 0.5 m" alpha="255" value="0.5" color="#fe9929"/>

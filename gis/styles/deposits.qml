@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="10000" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="10000" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,7 +58,6 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.166667;218,218,235,255:0.333333;188,189,220,255:0.5;158,154,200,255:0.666667;117,107,177,255:0.833333;84,39,143,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
           <item label="1" alpha="255" value="1" color="#f2f0f7"/>
           <item label="2 - 10" alpha="255" value="10" color="#dadaeb"/>
           <item label="11 - 100" alpha="255" value="100" color="#bcbddc"/>

@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="1000" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="1000" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.166667;253,208,162,255:0.333333;253,174,107,255:0.5;253,141,60,255:0.666667;230,85,13,255:0.833333;166,54,3,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 0.1 kJ" alpha="255" value="0.1" color="#feedde"/>
+          <item label="≤ 0.1 kJ" alpha="255" value="0.1" color="#feedde"/>
           <item label="0.1 - 1 kJ" alpha="255" value="1" color="#fdd0a2"/>
           <item label="1 - 10 kJ" alpha="255" value="10" color="#fdae6b"/>
           <item label="10 - 100 kJ" alpha="255" value="100" color="#fd8d3c"/>

@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="1000" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="1000" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.166667;199,233,192,255:0.333333;161,217,155,255:0.5;116,196,118,255:0.666667;49,163,84,255:0.833333;0,109,44,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 0.1 kJ" alpha="255" value="0.1" color="#edf8e9"/>
+          <item label="≤ 0.1 kJ" alpha="255" value="0.1" color="#edf8e9"/>
           <item label="0.1 - 1 kJ" alpha="255" value="1" color="#c7e9c0"/>
           <item label="1 - 10 kJ" alpha="255" value="10" color="#a1d99b"/>
           <item label="10 - 100 kJ" alpha="255" value="100" color="#74c476"/>

@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="3000" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="3000" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.166667;254,204,92,255:0.333333;253,141,60,255:0.5;240,59,32,255:0.666667;189,0,38,255:0.833333;103,0,13,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 30 kJ" alpha="255" value="30" color="#ffffb2"/>
+          <item label="≤ 30 kJ" alpha="255" value="30" color="#ffffb2"/>
           <item label="30 - 100 kJ" alpha="255" value="100" color="#fecc5c"/>
           <item label="100 - 300 kJ" alpha="255" value="300" color="#fd8d3c"/>
           <item label="300 - 1000 kJ" alpha="255" value="1000" color="#f03b20"/>

@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="2" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="2" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.142857;253,212,158,255:0.285714;253,187,132,255:0.428571;252,141,89,255:0.571429;239,101,72,255:0.714286;215,48,31,255:0.857143;153,0,0,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 0.05 m" alpha="255" value="0.05" color="#fef0d9"/>
+          <item label="≤ 0.05 m" alpha="255" value="0.05" color="#fef0d9"/>
           <item label="0.05 - 0.1 m" alpha="255" value="0.1" color="#fdd49e"/>
           <item label="0.1 - 0.25 m" alpha="255" value="0.25" color="#fdbb84"/>
           <item label="0.25 - 0.5 m" alpha="255" value="0.5" color="#fc8d59"/>

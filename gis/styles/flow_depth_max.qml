@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="5" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="5" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.142857;198,219,239,255:0.285714;158,202,225,255:0.428571;107,174,214,255:0.571429;66,146,198,255:0.714286;33,113,181,255:0.857143;8,69,148,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 0.1 m" alpha="255" value="0.1" color="#eff3ff"/>
+          <item label="≤ 0.1 m" alpha="255" value="0.1" color="#eff3ff"/>
           <item label="0.1 - 0.25 m" alpha="255" value="0.25" color="#c6dbef"/>
           <item label="0.25 - 0.5 m" alpha="255" value="0.5" color="#9ecae1"/>
           <item label="0.5 - 1 m" alpha="255" value="1" color="#6baed6"/>

@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="20" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="20" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.142857;199,233,180,255:0.285714;127,205,187,255:0.428571;65,182,196,255:0.571429;29,145,192,255:0.714286;34,94,168,255:0.857143;12,44,132,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 0.5 m" alpha="255" value="0.5" color="#ffffcc"/>
+          <item label="≤ 0.5 m" alpha="255" value="0.5" color="#ffffcc"/>
           <item label="0.5 - 1 m" alpha="255" value="1" color="#c7e9b4"/>
           <item label="1 - 2 m" alpha="255" value="2" color="#7fcdbb"/>
           <item label="2 - 5 m" alpha="255" value="5" color="#41b6c4"/>

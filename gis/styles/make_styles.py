@@ -4,9 +4,13 @@
 usage: /usr/bin/python3 gis/styles/make_styles.py [FOLDER]   (default: this folder)
 
 Every raster style is a QGIS 3.22 single-band pseudocolor renderer with discrete classes: a
-value v takes the colour of the first class whose upper break is >= v. The first class, up to 0,
-is transparent because 0 means "never reached" in every layer; nodata is transparent too. The
-classes and their sources are in CLASSES below (docs/layers.md explains them).
+value v takes the colour of the first class whose upper break is >= v. The value 0 ("never
+reached" in every layer) is made transparent by the renderer's transparency list, not by a
+class of its own, so a legend or print layout lists only classes that are drawn (QGIS draws a
+legend swatch with the layer's opacity whatever the class's alpha, so a transparent class used
+to print as a black box); nodata is transparent too. The layer is drawn at OPACITY so a hillshade
+or map under it stays readable. The classes and their sources are in CLASSES below
+(docs/layers.md explains them).
 trajectories.qml styles the lines of trajectories.gpkg: a graduated renderer on max_energy_kj
 with the energy classes of energy_max, the strongest drawn on top, and field aliases with units.
 The QML text is the format QGIS 3.22 itself writes with saveNamedStyle, with attributes in a
@@ -18,6 +22,7 @@ import sys
 from xml.sax.saxutils import quoteattr
 
 QGIS_VERSION = "3.22.16-Białowieża"
+OPACITY = "0.8"
 
 # Swiss hazard-mapping intensities for rock fall (BUWAL/BWG 1997, "Empfehlungen:
 # Berücksichtigung der Massenbewegungsgefahren", used by Rockyfor3D and RAMMS users): weak below
@@ -30,7 +35,8 @@ ENERGY_COLOURS = ["#ffffb2", "#fecc5c", "#fd8d3c", "#f03b20", "#bd0026", "#67000
 # Colours are ColorBrewer sequential ramps (Brewer, colorbrewer2.org), light = low intensity.
 CLASSES = {
     # Rock fall.
-    "reach_probability": ("", False, [0.01, 0.05, 0.1, 0.25, 0.5],
+    # Stored as a fraction, labelled in percent as zoning methods quote it.
+    "reach_probability": ("%", False, [0.01, 0.05, 0.1, 0.25, 0.5],
                           ["#ffffb2", "#fed976", "#feb24c", "#fd8d3c", "#f03b20", "#bd0026"]),
     "passages": ("", True, [1, 10, 100, 1000, 10000],
                  ["#eff3ff", "#c6dbef", "#6baed6", "#2171b5", "#084594", "#08306b"]),
@@ -45,8 +51,9 @@ CLASSES = {
     "jump_height_p95": ("m", False, [0.5, 1, 2, 5, 10, 20],
                         ["#ffffcc", "#c7e9b4", "#7fcdbb", "#41b6c4", "#1d91c0", "#225ea8",
                          "#0c2c84"]),
-    # Shared by rock fall and mud flow (one file name, one style).
-    "velocity_max": ("m/s", False, [1, 2, 5, 10, 20, 30],
+    # Shared by rock fall and mud flow (one file name, one style). The top limit is 40 m/s: rocks
+    # of the sample scene pass 30 m/s on half of the cells they reach at 100 runs (issue 17).
+    "velocity_max": ("m/s", False, [1, 5, 10, 20, 30, 40],
                      ["#f1eef6", "#d0d1e6", "#a6bddb", "#74a9cf", "#3690c0", "#0570b0",
                       "#034e7b"]),
     "energy_loss_friction": ("kJ", False, [0.1, 1, 10, 100, 1000],
@@ -82,14 +89,20 @@ def number(x):
 
 
 def labels(unit, counts, breaks):
-    """Legend labels of the classes above 0: '0 - 30 kJ', '30 - 100 kJ', ..., '> 3000 kJ'."""
+    """Legend labels of the classes above 0: '≤ 30 kJ', '30 - 100 kJ', ..., '> 3000 kJ'; counts
+    from 1 ('1', '2 - 10', ...); unit '%' labels fractions in percent."""
+    scale = 100 if unit == "%" else 1
     suffix = f" {unit}" if unit else ""
-    out, low = [], 0
+    out, low = [], None
     for high in breaks:
-        first = low + 1 if counts else low
-        out.append((f"{number(first)}" if first == high else f"{number(first)} - {number(high)}") + suffix)
+        if counts:
+            first = 1 if low is None else low + 1
+            text = f"{number(first)}" if first == high else f"{number(first)} - {number(high)}"
+        else:
+            text = f"≤ {number(high * scale)}" if low is None else f"{number(low * scale)} - {number(high * scale)}"
+        out.append(text + suffix)
         low = high
-    out.append(f"> {number(low)}{suffix}")
+    out.append(f"> {number(low * scale)}{suffix}")
     return out
 
 
@@ -110,7 +123,7 @@ def source_ramp(colours):
 
 
 def items(unit, counts, breaks, colours):
-    rows = ['          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>']
+    rows = []
     for label, high, colour in zip(labels(unit, counts, breaks), breaks + [math.inf], colours):
         rows.append(f'          <item label={quoteattr(label)} alpha="255" value="{number(high)}" color="{colour}"/>')
     return "\n".join(rows)
@@ -151,7 +164,12 @@ def style(unit, counts, breaks, colours):
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="{top}" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="{top}" opacity="{OPACITY}" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>

@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="10000" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="10000" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,7 +58,6 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.166667;198,219,239,255:0.333333;107,174,214,255:0.5;33,113,181,255:0.666667;8,69,148,255:0.833333;8,48,107,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
           <item label="1" alpha="255" value="1" color="#eff3ff"/>
           <item label="2 - 10" alpha="255" value="10" color="#c6dbef"/>
           <item label="11 - 100" alpha="255" value="100" color="#6baed6"/>

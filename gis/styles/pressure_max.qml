@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="300" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="300" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,8 +58,7 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.142857;252,197,192,255:0.285714;250,159,181,255:0.428571;247,104,161,255:0.571429;221,52,151,255:0.714286;174,1,126,255:0.857143;122,1,119,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 1 kPa" alpha="255" value="1" color="#feebe2"/>
+          <item label="≤ 1 kPa" alpha="255" value="1" color="#feebe2"/>
           <item label="1 - 3 kPa" alpha="255" value="3" color="#fcc5c0"/>
           <item label="3 - 10 kPa" alpha="255" value="10" color="#fa9fb5"/>
           <item label="10 - 30 kPa" alpha="255" value="30" color="#f768a1"/>

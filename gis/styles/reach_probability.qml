@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="0.5" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="0.5" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,13 +58,12 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.166667;254,217,118,255:0.333333;254,178,76,255:0.5;253,141,60,255:0.666667;240,59,32,255:0.833333;189,0,38,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 0.01" alpha="255" value="0.01" color="#ffffb2"/>
-          <item label="0.01 - 0.05" alpha="255" value="0.05" color="#fed976"/>
-          <item label="0.05 - 0.1" alpha="255" value="0.1" color="#feb24c"/>
-          <item label="0.1 - 0.25" alpha="255" value="0.25" color="#fd8d3c"/>
-          <item label="0.25 - 0.5" alpha="255" value="0.5" color="#f03b20"/>
-          <item label="&gt; 0.5" alpha="255" value="inf" color="#bd0026"/>
+          <item label="≤ 1 %" alpha="255" value="0.01" color="#ffffb2"/>
+          <item label="1 - 5 %" alpha="255" value="0.05" color="#fed976"/>
+          <item label="5 - 10 %" alpha="255" value="0.1" color="#feb24c"/>
+          <item label="10 - 25 %" alpha="255" value="0.25" color="#fd8d3c"/>
+          <item label="25 - 50 %" alpha="255" value="0.5" color="#f03b20"/>
+          <item label="&gt; 50 %" alpha="255" value="inf" color="#bd0026"/>
           <rampLegendSettings useContinuousLegend="0" direction="0" prefix="" minimumLabel="" orientation="2" suffix="" maximumLabel="">
             <numericFormat id="basic">
               <Option type="Map">

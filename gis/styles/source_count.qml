@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="500" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="500" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -53,7 +58,6 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.142857;191,211,230,255:0.285714;158,188,218,255:0.428571;140,150,198,255:0.571429;140,107,177,255:0.714286;136,65,157,255:0.857143;110,1,107,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
           <item label="1" alpha="255" value="1" color="#edf8fb"/>
           <item label="2 - 5" alpha="255" value="5" color="#bfd3e6"/>
           <item label="6 - 10" alpha="255" value="10" color="#9ebcda"/>

@@ -14,7 +14,7 @@
   </temporal>
   <renderer-v2 type="graduatedSymbol" attr="max_energy_kj" graduatedMethod="GraduatedColor" symbollevels="1" enableorderby="0" forceraster="0" referencescale="-1">
     <ranges>
-      <range symbol="0" label="0 - 30 kJ" lower="0.000000000000000" upper="30.000000000000000" render="true"/>
+      <range symbol="0" label="≤ 30 kJ" lower="0.000000000000000" upper="30.000000000000000" render="true"/>
       <range symbol="1" label="30 - 100 kJ" lower="30.000000000000000" upper="100.000000000000000" render="true"/>
       <range symbol="2" label="100 - 300 kJ" lower="100.000000000000000" upper="300.000000000000000" render="true"/>
       <range symbol="3" label="300 - 1000 kJ" lower="300.000000000000000" upper="1000.000000000000000" render="true"/>

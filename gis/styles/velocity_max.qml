@@ -28,7 +28,12 @@
     <provider>
       <resampling maxOversampling="2" zoomedInResamplingMethod="nearestNeighbour" zoomedOutResamplingMethod="nearestNeighbour" enabled="false"/>
     </provider>
-    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="30" opacity="1" alphaBand="-1">
+    <rasterrenderer type="singlebandpseudocolor" nodataColor="" band="1" classificationMin="0" classificationMax="40" opacity="0.8" alphaBand="-1">
+      <rasterTransparency>
+        <singleValuePixelList>
+          <pixelListEntry min="0" max="0" percentTransparent="100"/>
+        </singleValuePixelList>
+      </rasterTransparency>
       <minMaxOrigin>
         <limits>None</limits>
         <extent>WholeRaster</extent>
@@ -38,7 +43,7 @@
         <stdDevFactor>2</stdDevFactor>
       </minMaxOrigin>
       <rastershader>
-        <colorrampshader labelPrecision="2" minimumValue="0" clip="0" maximumValue="30" classificationMode="1" colorRampType="DISCRETE">
+        <colorrampshader labelPrecision="2" minimumValue="0" clip="0" maximumValue="40" classificationMode="1" colorRampType="DISCRETE">
           <colorramp type="gradient" name="[source]">
             <Option type="Map">
               <Option type="QString" value="241,238,246,255" name="color1"/>
@@ -53,14 +58,13 @@
             <prop v="gradient" k="rampType"/>
             <prop v="0.142857;208,209,230,255:0.285714;166,189,219,255:0.428571;116,169,207,255:0.571429;54,144,192,255:0.714286;5,112,176,255:0.857143;3,78,123,255" k="stops"/>
           </colorramp>
-          <item label="0 (never reached)" alpha="0" value="0" color="#000000"/>
-          <item label="0 - 1 m/s" alpha="255" value="1" color="#f1eef6"/>
-          <item label="1 - 2 m/s" alpha="255" value="2" color="#d0d1e6"/>
-          <item label="2 - 5 m/s" alpha="255" value="5" color="#a6bddb"/>
-          <item label="5 - 10 m/s" alpha="255" value="10" color="#74a9cf"/>
-          <item label="10 - 20 m/s" alpha="255" value="20" color="#3690c0"/>
-          <item label="20 - 30 m/s" alpha="255" value="30" color="#0570b0"/>
-          <item label="&gt; 30 m/s" alpha="255" value="inf" color="#034e7b"/>
+          <item label="≤ 1 m/s" alpha="255" value="1" color="#f1eef6"/>
+          <item label="1 - 5 m/s" alpha="255" value="5" color="#d0d1e6"/>
+          <item label="5 - 10 m/s" alpha="255" value="10" color="#a6bddb"/>
+          <item label="10 - 20 m/s" alpha="255" value="20" color="#74a9cf"/>
+          <item label="20 - 30 m/s" alpha="255" value="30" color="#3690c0"/>
+          <item label="30 - 40 m/s" alpha="255" value="40" color="#0570b0"/>
+          <item label="&gt; 40 m/s" alpha="255" value="inf" color="#034e7b"/>
           <rampLegendSettings useContinuousLegend="0" direction="0" prefix="" minimumLabel="" orientation="2" suffix="" maximumLabel="">
             <numericFormat id="basic">
               <Option type="Map">

@@ -7,13 +7,16 @@
 #include <cstdint>
 #include <cstdio>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
 
 #include "commands.hpp"
+#include "intensity_layer.hpp"
 #include "mudflow_materials.hpp"
 #include "parameter_table.hpp"
+#include "run_project.hpp"
 #include "terminal_progress.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/layer_writer.hpp"
@@ -37,6 +40,8 @@ struct MudflowOptions {
   std::string depth_field = "depth";   // --depth-field, [mud] depth_field
   std::string snapshot_start = gis::kDefaultSnapshotStart;  // --start-time, [outputs] snapshot_start
   std::int64_t snapshot_start_seconds = 0;                  // s after 1970-01-01, from snapshot_start
+  std::string project = "on";  // --project on|off, [outputs] project
+  std::string intensity = kDefaultIntensity;                // --intensity, [outputs] intensity
   MudflowSettings settings;
   std::vector<std::string> command_line;
 };
@@ -53,7 +58,8 @@ constexpr Flag kFlags[] = {{"run", "duration", "--duration"},       {"run", "see
                            {"mud", "particle_size", "--particle-size"}, {"adaptivity", "adaptive", "--adaptive"},
                            {"rheology", "rheology", "--rheology"},  {"outputs", "snapshot_interval", "--snapshots"},
                            {"mud", "release_depth", "--depth"},     {"mud", "depth_field", "--depth-field"},
-                           {"outputs", "snapshot_start", "--start-time"}};
+                           {"outputs", "snapshot_start", "--start-time"}, {"outputs", "intensity", "--intensity"},
+                           {"outputs", "project", "--project"}};
 
 // Every MudflowSettings field (mudflow_simulation.hpp, rheology.hpp) as a scenario parameter.
 ParameterTable parameter_table(MudflowOptions& o) {
@@ -135,6 +141,11 @@ ParameterTable parameter_table(MudflowOptions& o) {
   table.add("outputs", "map_interval", "s", "flow depth, velocity and pressure maxima are sampled this often",
             &s.map_interval);
   table.add("outputs", "snapshot_interval", "s", "> 0: particles.gpkg holds the particles this often", &s.snapshot_interval);
+  table.add("outputs", "project", "",
+            "on: also write project.qgz, hillshade.tif and quicklook/*.png with QGIS (python3-qgis); off: not", &o.project);
+  table.add("outputs", "intensity", "",
+            "intensity classes of intensity.tif: a built-in guideline (foen-2016), a guideline file FILE.toml, or none",
+            &o.intensity);
   table.add("outputs", "snapshot_start", "",
             "date-time of the release on particles.gpkg's clock, YYYY-MM-DDTHH:MM:SS (no time zone)", &o.snapshot_start);
   return table;
@@ -274,15 +285,18 @@ std::string scenario_text(const MudflowOptions& o) {
   return text.str();
 }
 
-// The mud-flow layers of DESIGN.md section 3 with their band descriptions and units.
-void write_layers(gis::LayerWriter& writer, const FlowLayers& layers) {
-  writer.add(layers.flow_depth_max, {"flow_depth_max", "Maximum flow depth", "m"});
-  writer.add(layers.velocity_max, {"velocity_max", "Maximum velocity", "m/s"});
-  writer.add(layers.pressure_max, {"pressure_max", "Maximum impact pressure", "kPa"});
-  writer.add(layers.deposit_depth, {"deposit_depth", "Deposit depth", "m"});
-  writer.add(layers.arrival_time,
-             {"arrival_time", "Arrival time of the flow", "s", gis::OverviewReduction::earliest_positive});
-  if (layers.erosion_depth) writer.add(*layers.erosion_depth, {"erosion_depth", "Eroded depth", "m"});
+// The mud-flow layers of DESIGN.md section 3 with their band descriptions and units; erosion_depth
+// only when the run has erodible material.
+HazardLayers hazard_layers(const FlowLayers& layers) {
+  HazardLayers out = {
+      {&layers.flow_depth_max, {"flow_depth_max", "Maximum flow depth", "m"}},
+      {&layers.velocity_max, {"velocity_max", "Maximum velocity", "m/s"}},
+      {&layers.pressure_max, {"pressure_max", "Maximum impact pressure", "kPa"}},
+      {&layers.deposit_depth, {"deposit_depth", "Deposit depth", "m"}},
+      {&layers.arrival_time,
+       {"arrival_time", "Arrival time of the flow", "s", gis::OverviewReduction::earliest_positive}}};
+  if (layers.erosion_depth) out.push_back({&*layers.erosion_depth, {"erosion_depth", "Eroded depth", "m"}});
+  return out;
 }
 
 // Wall-clock seconds since `start`.
@@ -379,6 +393,8 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   apply_material(o, table);
   if (adaptive_given) o.settings.adaptive = parse_on_off(o.adaptive);
   validate(o, table);
+  const std::optional<IntensityScheme> intensity = chosen_intensity(o.intensity, "mudflow", hazard_layers(FlowLayers{}));
+  const bool project = project_wanted(o.project);
 
   const auto start = std::chrono::steady_clock::now();
   gis::RunRecord record;
@@ -401,19 +417,23 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();
-  gis::LayerWriter writer(o.out, {{"TALUS_SCENARIO", scenario_text(o)}});
-  write_layers(writer, result.layers);
+  gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "mud flow"}, {"TALUS_SCENARIO", scenario_text(o)}});
+  const nlohmann::json intensity_entry = write_layers_with_intensity(writer, hazard_layers(result.layers), intensity);
   if (o.settings.snapshot_interval > 0.0) {
     gis::add_particle_snapshots(writer, result.snapshots, o.settings.snapshot_interval, ground.spec().crs_wkt,
                                 o.snapshot_start_seconds);
   }
   record_run(record, o, scene, table, result);
+  if (intensity) record.set("intensity", intensity_entry);
   record.add_timing("read_inputs", read_seconds);
   record.add_timing("simulate", simulate_seconds);
   record.add_timing("write_layers", seconds_since(write_start));
   record.write(writer.temporary_path("run.json"));
   writer.commit();
+  if (intensity) std::printf("%s\n", intensity_summary(intensity_entry).c_str());
   print_summary(result, simulate_seconds, o.out);
+  std::fflush(stdout);
+  write_project_if_wanted(project, o.out, "mudflow", o.inputs.dem, o.inputs.release);
   return 0;
 }
 
@@ -464,10 +484,14 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
                                   "Threads (default: all cores). With other jobs on the machine, start Talus with "
                                   "OMP_WAIT_POLICY=passive in the environment (docs/performance.md)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
+  auto* intensity = cmd->add_option("--intensity", o->intensity,
+                                    "Intensity classes of intensity.tif: foen-2016 (default), FILE.toml or none");
+  auto* project = cmd->add_option("--project", o->project,
+                                  "on (default): also write project.qgz, hillshade.tif and quicklook/*.png with QGIS; off");
   cmd->callback([o, table, &action, duration, material, size, adaptive, rheology, snapshots, seed, threads, depth,
-                 depth_field, start_time] {
-    const CLI::Option* given[] = {duration, seed,      threads, material,    size,      adaptive,
-                                  rheology, snapshots, depth,   depth_field, start_time};
+                 depth_field, start_time, intensity, project] {
+    const CLI::Option* given[] = {duration, seed,      threads,     material,    size,       adaptive,  rheology,
+                                  snapshots, depth,    depth_field, start_time, intensity, project};
     static_assert(std::size(kFlags) == std::size(given));
     for (std::size_t k = 0; k < std::size(kFlags); ++k) {
       if (given[k]->count() > 0) table->pin(kFlags[k].section, kFlags[k].name);

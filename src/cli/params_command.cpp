@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "intensity_guidelines.hpp"
 
 namespace talus::cli {
 
@@ -12,7 +13,8 @@ void add_params_command(CLI::App& app, Action& action) {
     action = [] {
       const nlohmann::json all = {{"rockfall", rockfall_parameters()},
                                   {"mudflow", mudflow_parameters()},
-                                  {"mudflow_materials", mudflow_materials()}};
+                                  {"mudflow_materials", mudflow_materials()},
+                                  {"intensity_guidelines", built_in_intensity_guidelines()}};
       std::cout << all.dump(2) << '\n';
       return 0;
     };

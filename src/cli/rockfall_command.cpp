@@ -4,14 +4,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
 
 #include "commands.hpp"
 #include "envelope_convergence_report.hpp"
+#include "intensity_layer.hpp"
 #include "number_list.hpp"
 #include "parameter_table.hpp"
+#include "run_project.hpp"
 #include "terminal_progress.hpp"
 #include "truncated_trajectories.hpp"
 #include "talus/core/errors.hpp"
@@ -35,6 +38,8 @@ struct RockfallOptions {
   std::string block_size = "1";
   CountOrAuto runs{true, 0};   // into settings.runs_per_source and settings.auto_runs
   std::string runs_flag;       // --runs as given
+  std::string project = "on";  // --project on|off, [outputs] project
+  std::string intensity = kDefaultIntensity;  // --intensity, [outputs] intensity
   RockfallSettings settings;
   FastBounceParameters fast;
   FullModelParameters full;
@@ -82,6 +87,11 @@ ParameterTable parameter_table(RockfallOptions& o) {
             &c.max_runs);
   table.add("run", "seed", "", "seed of the counter-based random numbers", &o.settings.seed);
   table.add("run", "saved_trajectories", "", "at most this many lines in trajectories.gpkg", &o.settings.saved_trajectories);
+  table.add("outputs", "project", "",
+            "on: also write project.qgz, hillshade.tif and quicklook/*.png with QGIS (python3-qgis); off: not", &o.project);
+  table.add("outputs", "intensity", "",
+            "intensity classes of intensity.tif: a built-in guideline (foen-2016), a guideline file FILE.toml, or none",
+            &o.intensity);
   table.add("rock", "shape", "", "sphere, ellipsoid or box", &o.block_shape);
   table.add("rock", "size", "m", "diameter, or axes A,B,C", &o.block_size);
   table.add("rock", "density", "kg/m3", "rock density", &o.settings.rock.density);
@@ -159,18 +169,20 @@ std::string scenario_text(const RockfallOptions& o) {
   return text.str();
 }
 
-void write_layers(gis::LayerWriter& writer, const RockfallLayers& layers) {
-  writer.add(layers.reach_probability, {"reach_probability", "Reach probability per contributing source", ""});
-  writer.add(layers.passages, {"passages", "Number of passages", ""});
-  writer.add(layers.source_count, {"source_count", "Number of release sources reaching the cell", ""});
-  writer.add(layers.deposits, {"deposits", "Number of deposited rocks", ""});
-  writer.add(layers.energy_max, {"energy_max", "Maximum kinetic energy", "kJ"});
-  writer.add(layers.energy_p95, {"energy_p95", "95th percentile of kinetic energy over passages", "kJ"});
-  writer.add(layers.jump_height_p95, {"jump_height_p95", "95th percentile of jump height over passages", "m"});
-  writer.add(layers.velocity_max, {"velocity_max", "Maximum velocity", "m/s"});
-  writer.add(layers.energy_loss_friction, {"energy_loss_friction", "Energy lost by friction, mean per simulated rock", "kJ"});
-  writer.add(layers.energy_loss_deformation,
-             {"energy_loss_deformation", "Energy lost by ground deformation, mean per simulated rock", "kJ"});
+// The run's hazard layers with their file names, descriptions and units (DESIGN.md section 3).
+HazardLayers hazard_layers(const RockfallLayers& layers) {
+  return {{&layers.reach_probability, {"reach_probability", "Reach probability per contributing source", ""}},
+          {&layers.passages, {"passages", "Number of passages", ""}},
+          {&layers.source_count, {"source_count", "Number of release sources reaching the cell", ""}},
+          {&layers.deposits, {"deposits", "Number of deposited rocks", ""}},
+          {&layers.energy_max, {"energy_max", "Maximum kinetic energy", "kJ"}},
+          {&layers.energy_p95, {"energy_p95", "95th percentile of kinetic energy over passages", "kJ"}},
+          {&layers.jump_height_p95, {"jump_height_p95", "95th percentile of jump height over passages", "m"}},
+          {&layers.velocity_max, {"velocity_max", "Maximum velocity", "m/s"}},
+          {&layers.energy_loss_friction,
+           {"energy_loss_friction", "Energy lost by friction, mean per simulated rock", "kJ"}},
+          {&layers.energy_loss_deformation,
+           {"energy_loss_deformation", "Energy lost by ground deformation, mean per simulated rock", "kJ"}}};
 }
 
 // Median, 95th percentile (nearest rank) and maximum of the runs' horizontal path lengths (m).
@@ -284,6 +296,8 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
     throw InputError(o.out.string() + " (--out): exists and is not a folder");
   }
+  const std::optional<IntensityScheme> intensity = chosen_intensity(o.intensity, "rockfall", hazard_layers(RockfallLayers{}));
+  const bool project = project_wanted(o.project);
 
   const auto start = std::chrono::steady_clock::now();
   gis::RunRecord record;
@@ -317,8 +331,8 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();
-  gis::LayerWriter writer(o.out, {{"TALUS_SCENARIO", scenario_text(o)}});
-  write_layers(writer, result.statistics.layers());
+  gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", scenario_text(o)}});
+  const nlohmann::json intensity_entry = write_layers_with_intensity(writer, hazard_layers(result.statistics.layers()), intensity);
   gis::add_trajectories(writer, result.lines, ground.spec().crs_wkt);
 
   record.add_input("dem", o.inputs.dem, &scene.dem.elevation.spec());
@@ -345,6 +359,7 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   record.set("runout", runout_summary(result.runouts));
   record.set("runs", runs_record(result, o.settings));
   record.set("convergence", convergence_record(result, o.settings));
+  if (intensity) record.set("intensity", intensity_entry);
   const std::vector<std::string> trajectory_problems =
       o.mode == "fast" ? truncated_trajectory_problems(result.stop_counts, "[fast_bounce] max_time", o.fast.max_time)
                        : truncated_trajectory_problems(result.stop_counts, "[full] max_time", o.full.max_time);
@@ -372,7 +387,10 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   for (const auto& line : convergence_lines(result, o.settings)) std::printf("%s\n", line.c_str());
   for (const auto& problem : trajectory_problems) std::printf("problem: %s\n", problem.c_str());
   for (const auto& problem : unconverged) std::printf("problem: %s\n", problem.c_str());
+  if (intensity) std::printf("%s\n", intensity_summary(intensity_entry).c_str());
   std::printf("Layers written to %s (open the .tif files in QGIS: each has its style beside it)\n", o.out.c_str());
+  std::fflush(stdout);
+  write_project_if_wanted(project, o.out, "rockfall", o.inputs.dem, o.inputs.release);
   return 0;
 }
 
@@ -399,6 +417,8 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
   auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(1);
   cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
+  auto* intensity = cmd->add_option("--intensity", o->intensity,
+                                    "Intensity classes of intensity.tif: foen-2016 (default), FILE.toml or none");
   // A run or source number: digits only, so that -1 is refused rather than wrapped to 2^64 - 1.
   const CLI::Validator whole_number(
       [](std::string& text) {
@@ -412,10 +432,13 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
       ->check(whole_number);
   cmd->add_option("--only-run", o->settings.only_run, "Simulate only this run of each source (0-based, as run_id)")
       ->check(whole_number);
-  cmd->callback([o, table, &action, mode, runs, shape, size, density, seed] {
+  auto* project = cmd->add_option("--project", o->project,
+                                  "on (default): also write project.qgz, hillshade.tif and quicklook/*.png with QGIS; off");
+  cmd->callback([o, table, &action, mode, runs, shape, size, density, seed, intensity, project] {
     const std::pair<CLI::Option*, const char*> flags[] = {{mode, "run.mode"},    {runs, "run.runs"},
                                                           {seed, "run.seed"},    {shape, "rock.shape"},
-                                                          {size, "rock.size"},   {density, "rock.density"}};
+                                                          {size, "rock.size"},   {density, "rock.density"},
+                                                          {intensity, "outputs.intensity"}, {project, "outputs.project"}};
     for (const auto& [option, key] : flags) {
       if (option->count() == 0) continue;
       const std::string name(key);

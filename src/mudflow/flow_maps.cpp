@@ -12,6 +12,9 @@
 namespace talus {
 namespace {
 
+// The arrival time (s) written for cells the flow covers at release, the first instant.
+constexpr double kReleaseArrival = 0.001;
+
 // The integer node coordinates k with low <= k <= high (low <= high) inside [0, count - 1];
 // false when there are none.
 bool node_range(double low, double high, int count, int& first, int& last) {
@@ -113,7 +116,8 @@ void FlowMaps::clear_spread() {
 }
 
 // Maxima of depth (m), depth-weighted speed u (m/s) and impact pressure rho0 u^2 (kPa), and the
-// first time (s) the depth exceeds the arrival depth.
+// first time (s) the depth exceeds the arrival depth; a cell covered at release takes
+// kReleaseArrival, as 0 means "never reached" in every layer (docs/layers.md).
 void FlowMaps::sample(const ParticleSet& particles, double time) {
   clear_spread();
   for (std::size_t i = 0; i < particles.size(); ++i) {
@@ -131,7 +135,7 @@ void FlowMaps::sample(const ParticleSet& particles, double time) {
     pressure_max = std::max(pressure_max, static_cast<float>(pressure));
     if (!reached_[cell] && depth > arrival_depth_) {
       reached_[cell] = 1;
-      layers_.arrival_time[cell] = static_cast<float>(time);
+      layers_.arrival_time[cell] = static_cast<float>(std::max(time, kReleaseArrival));
     }
   }
 }

@@ -153,11 +153,12 @@ TEST_F(SampleMudflow, RecordsCountsAndConservesVolume) {
 TEST_F(SampleMudflow, LayersOpenStyledInQgis) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
   std::string arguments = (test::source_dir() / "tests/gis/qgis/check_layer_in_qgis.py").string() + " EPSG:31287";
-  const std::map<std::string, std::string> descriptions = {{"flow_depth_max", "Maximum flow depth"},
-                                                           {"velocity_max", "Maximum velocity"},
-                                                           {"pressure_max", "Maximum impact pressure"},
-                                                           {"deposit_depth", "Deposit depth"},
-                                                           {"arrival_time", "Arrival time of the flow"}};
+  const std::map<std::string, std::string> descriptions = {{"flow_depth_max", "Maximum flow depth (m)"},
+                                                           {"velocity_max", "Maximum velocity (m/s)"},
+                                                           {"pressure_max", "Maximum impact pressure (kPa)"},
+                                                           {"deposit_depth", "Deposit depth (m)"},
+                                                           {"arrival_time", "Arrival time of the flow (s)"},
+                                                           {"intensity", "Intensity class by foen-2016"}};
   for (const auto& [layer, description] : descriptions) {
     arguments += " " + (root_ / "out" / (layer + ".tif")).string() + " '" + description + "'";
   }
@@ -252,7 +253,7 @@ TEST(MudflowErosion, EntrainsFromTheErodibleRaster) {
   const auto eroded = test::read_band(root / "eroding" / "erosion_depth.tif");
   EXPECT_LE(*std::max_element(eroded.begin(), eroded.end()), 0.5f + 1e-6f);
   EXPECT_EQ(run_python((test::source_dir() / "tests/gis/qgis/check_layer_in_qgis.py").string() + " EPSG:31287 " +
-                       (root / "eroding" / "erosion_depth.tif").string() + " 'Eroded depth'"),
+                       (root / "eroding" / "erosion_depth.tif").string() + " 'Eroded depth (m)'"),
             0);
 }
 

@@ -62,8 +62,9 @@ TEST_F(SampleRockfall, LayersOpenStyledInQgis) {
   const std::map<std::string, std::string> descriptions = {
       {"reach_probability", "Reach probability per contributing source"},
       {"source_count", "Number of release sources reaching the cell"},
-      {"energy_max", "Maximum kinetic energy"},
-      {"velocity_max", "Maximum velocity"}};
+      {"energy_max", "Maximum kinetic energy (kJ)"},
+      {"velocity_max", "Maximum velocity (m/s)"},
+      {"intensity", "Intensity class by foen-2016"}};
   for (const auto& [layer, description] : descriptions) {
     arguments += " " + (root_ / "seed1_t2" / (layer + ".tif")).string() + " '" + description + "'";
   }

@@ -104,11 +104,17 @@ TEST(LayerWriter, WritesAFloat32CloudOptimizedGeoTiffOnTheGridWithItsProperties)
   const auto folder = test::fresh_folder("layer_writer_cog");
   const auto grid = sample_grid(300, 200, epsg_wkt(31287));
   {
-    LayerWriter writer(folder, {{"TALUS_SCENARIO", "runs = 10"}});
+    LayerWriter writer(folder, {{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", "runs = 10"}});
     writer.add(grid, {"energy_max", "Maximum kinetic energy", "kJ"});
     writer.commit();
   }
-  EXPECT_EQ(names_in(folder), (std::set<std::string>{"energy_max.tif", "energy_max.qml"}));
+  EXPECT_EQ(names_in(folder), (std::set<std::string>{"energy_max.tif", "energy_max.qml", "energy_max.qmd"}));
+  // The QGIS metadata: a title naming the process, an abstract with the unit and scenario.
+  const std::string qmd = read_text(folder / "energy_max.qmd");
+  EXPECT_NE(qmd.find("<title>Maximum kinetic energy (rock fall)</title>"), std::string::npos) << qmd;
+  EXPECT_NE(qmd.find("<abstract>Maximum kinetic energy (kJ), rock fall hazard layer written by Talus"), std::string::npos)
+      << qmd;
+  EXPECT_NE(qmd.find("Scenario: runs = 10."), std::string::npos) << qmd;
   EXPECT_EQ(read_text(folder / "energy_max.qml"), *embedded_style("energy_max"));
 
   const auto dataset = open_layer(folder / "energy_max.tif");
@@ -137,7 +143,7 @@ TEST(LayerWriter, WritesAFloat32CloudOptimizedGeoTiffOnTheGridWithItsProperties)
   int has_nodata = 0;
   EXPECT_EQ(band->GetNoDataValue(&has_nodata), kLayerNodata);
   EXPECT_TRUE(has_nodata);
-  EXPECT_STREQ(band->GetDescription(), "Maximum kinetic energy");
+  EXPECT_STREQ(band->GetDescription(), "Maximum kinetic energy (kJ)");  // QGIS's legend heading
   EXPECT_STREQ(band->GetUnitType(), "kJ");
   EXPECT_GE(band->GetOverviewCount(), 1);
 
@@ -288,7 +294,8 @@ TEST(LayerWriter, CommitsTheFilesOfTheSetAndDropsALayerThatFailed) {
   fs::remove_all(folder / ".flow_depth_max.qml.part");
   std::ofstream(writer.temporary_path("run.json")) << "{}";
   writer.commit();
-  EXPECT_EQ(names_in(folder), (std::set<std::string>{"velocity_max.tif", "velocity_max.qml", "run.json"}));
+  EXPECT_EQ(names_in(folder),
+            (std::set<std::string>{"velocity_max.tif", "velocity_max.qml", "velocity_max.qmd", "run.json"}));
   EXPECT_EQ(read_text(folder / "run.json"), "{}");
 }
 
@@ -321,7 +328,7 @@ TEST(LayerWriter, OpensStyledInQgis) {
   }
   const auto script = test::source_dir() / "tests/gis/qgis/check_layer_in_qgis.py";
   EXPECT_EQ(run_python(quoted(script.string()) + " EPSG:31287 " + quoted((folder / "energy_max.tif").string()) +
-                       " 'Maximum kinetic energy'"),
+                       " 'Maximum kinetic energy (kJ)'"),
             0);
 }
 
@@ -337,7 +344,8 @@ TEST(LayerWriter, EveryContractLayerHasTheStyleOfGisStylesAndQgisAppliesIt) {
       ASSERT_TRUE(style) << layer.name;
       EXPECT_EQ(*style, read_text(test::source_dir() / "gis/styles" / (layer.name + ".qml"))) << layer.name;
       writer.add(sample_grid(30, 20, wkt), layer);
-      layers += " " + quoted((folder / (layer.name + ".tif")).string()) + " " + quoted(layer.description);
+      const std::string band = layer.unit.empty() ? layer.description : layer.description + " (" + layer.unit + ")";
+      layers += " " + quoted((folder / (layer.name + ".tif")).string()) + " " + quoted(band);
     }
     writer.commit();
   }

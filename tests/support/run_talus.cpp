@@ -2,6 +2,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -30,7 +31,12 @@ ProgramResult run_talus(const std::vector<std::string>& arguments, const std::fi
   const auto capture = working_folder.parent_path() / ("capture-" + working_folder.filename().string());
   std::filesystem::create_directories(capture);
   std::string command = "cd " + quoted(working_folder.string()) + " && " + quoted(talus_exe().string());
-  for (const auto& a : arguments) command += " " + quoted(a);
+  const bool simulates = !arguments.empty() && (arguments[0] == "rockfall" || arguments[0] == "mudflow");
+  const bool project_off = simulates && std::ranges::find(arguments, "--project") == arguments.end();
+  for (std::size_t k = 0; k < arguments.size(); ++k) {
+    command += " " + quoted(arguments[k]);
+    if (k == 0 && project_off) command += " --project off";  // right after the subcommand
+  }
   command += " >" + quoted((capture / "out").string()) + " 2>" + quoted((capture / "err").string());
   const int status = std::system(command.c_str());
   ProgramResult result;

@@ -13,6 +13,8 @@ struct ProgramResult {
   std::string err;   // stderr
 };
 
+// A rockfall or mudflow run gets `--project off` unless its arguments name --project: the QGIS
+// project and quicklooks take seconds per run, and tests/cli/run_project_test.cpp tests them.
 ProgramResult run_talus(const std::vector<std::string>& arguments, const std::filesystem::path& working_folder);
 
 // The exit code of ../shared/tools/check_layers.py on an output folder: `kind` is "rockfall" or

@@ -166,7 +166,7 @@ class TalusRunAlgorithm(QgsProcessingAlgorithm):
         if code != 0:
             raise QgsProcessingException("\n".join(errors or lines[-5:]) or f"talus exited with code {code}")
         for name in sorted(os.listdir(out)):
-            if name.endswith(".tif"):
+            if name.endswith(".tif") and name != "hillshade.tif":  # the project's backdrop, not a result
                 title = f"{name[:-4].replace('_', ' ')} ({PROCESS_WORDS[self.command]})"
                 details = QgsProcessingContext.LayerDetails(title, context.project(), "")
                 context.addLayerToLoadOnCompletion(os.path.join(out, name), details)

@@ -28,7 +28,7 @@ struct FlowLayers {
   Grid<float> velocity_max;          // m/s
   Grid<float> pressure_max;          // kPa: impact pressure rho0 u^2
   Grid<float> deposit_depth;         // m, normal to the ground
-  Grid<float> arrival_time;          // s; 0 where never reached
+  Grid<float> arrival_time;          // s; 0 where never reached, 0.001 where covered at release
   std::optional<Grid<float>> erosion_depth;  // m, only with an erodible raster
 };
 

@@ -207,6 +207,19 @@ TEST(FlowMaps, ArrivalIsTheFirstSampleAboveTheThresholdAndDepositedParticlesDoNo
   EXPECT_NEAR(layers.flow_depth_max.at(10, 10), 2.5 * threshold, 2.5e-6 * threshold);
 }
 
+// Issue 17: 0 means "never reached", so the release area (reached at t = 0) must hold a time
+// above 0, or its legend and overviews would show it as never reached.
+TEST(FlowMaps, CellsCoveredAtReleaseHoldAnArrivalTimeAboveZero) {
+  const GroundModel ground =
+      make_ground(local_spec(20, 20, 1.0), [](double, double) { return 0.0; }, fast_material(0.5, 0.8, 0.6));
+  FlowMaps maps(ground, kRho, 0.05, false);
+  ParticleSet particles;
+  particles.add(5000, {10, -10, 0}, {0, 0, 0}, 3.0);
+  maps.sample(particles, 0.0);
+  EXPECT_FLOAT_EQ(maps.layers().arrival_time.at(10, 10), 0.001f);
+  EXPECT_EQ(maps.layers().arrival_time.at(2, 2), 0.0f);  // never reached
+}
+
 TEST(FlowMaps, NodataOutsideTheValidAreaAndZeroInUnreachedCells) {
   GridSpec spec = local_spec(20, 20, 1.0);
   Grid<double> z(spec, 5.0);

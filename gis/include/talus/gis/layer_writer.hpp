@@ -20,10 +20,16 @@ struct LayerDescription {
   std::string description;   // band description, e.g. "Reach probability"
   std::string unit;          // band unit, e.g. "kJ"; empty for counts and probabilities
   OverviewReduction overview = OverviewReduction::largest;  // how a zoomed-out cell sums up its cells
+  std::string style_qml{};   // the layer's own QML style; empty: the one of gis/styles/<name>.qml
 };
 
 // Writes a set of layers into one folder as a unit: each layer goes to a temporary name and
-// all are renamed only by commit(), so a failed run leaves no partial layer behind.
+// all are renamed only by commit(), so a failed run leaves no partial layer behind. Beside each
+// <layer>.tif go <layer>.qml (its style) and <layer>.qmd (title and abstract for QGIS).
+//
+// Metadata keys the writer also reads: TALUS_PROCESS ("rock fall", "mud flow") ends each
+// layer's title, so the two processes' layers of one quantity have distinct titles, and
+// TALUS_SCENARIO goes into each abstract.
 class LayerWriter {
  public:
   // metadata: written into every layer (TALUS_VERSION is added); the folder is created.
@@ -32,7 +38,7 @@ class LayerWriter {
   LayerWriter(const LayerWriter&) = delete;
   LayerWriter& operator=(const LayerWriter&) = delete;
 
-  // Writes values (nodata where invalid per the grid's spec) as a COG + its QML style.
+  // Writes values (nodata where invalid per the grid's spec) as a COG + its QML style and QMD.
   void add(const Grid<float>& values, const LayerDescription& layer);
   // Writes a non-raster file of the set (run.json, a GeoPackage) from its temporary path.
   std::filesystem::path temporary_path(const std::string& file_name);
@@ -44,6 +50,7 @@ class LayerWriter {
   std::filesystem::path out_dir_;
   std::map<std::string, std::string> metadata_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> pending_;  // temp -> final
+  std::string written_at_;  // UTC date and time of the set, for the layers' metadata
   bool committed_ = false;
 };
 

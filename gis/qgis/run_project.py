@@ -1,0 +1,261 @@
+#!/usr/bin/python3
+"""The QGIS project and quicklooks of a finished run (issue 17, item 8; docs/layers.md, "QGIS
+project and quicklooks").
+
+usage: run_project.py OUT_DIR PROCESS DEM [RELEASE]
+
+PROCESS is rockfall or mudflow. Writes into OUT_DIR:
+- project.qgz: every layer of the run styled (its .qml) under its title (its .qmd), grouped,
+  over a hillshade of DEM, with the release layer and, for rock fall, the trajectories; only
+  the intensity, the trajectories, the release and the hillshade are switched on.
+- quicklook/<layer>.png for the main layers: the layer over the hillshade, zoomed to the cells
+  the process reached, with its legend, a scale bar and its title, drawn by QGIS's own layout
+  renderer.
+Both are written under temporary names and renamed when complete. The talus program runs this
+script after it has committed the layers; it runs on Debian's /usr/bin/python3 (python3-qgis).
+"""
+import os
+import shutil
+import sys
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+os.environ["GDAL_PAM_ENABLED"] = "NO"  # no .aux.xml beside the layers QGIS reads
+
+from osgeo import gdal  # noqa: E402
+from qgis.core import (QgsApplication, QgsBilinearRasterResampler, QgsLayerTree, QgsLayoutExporter,  # noqa: E402
+                       QgsLayoutItemLabel, QgsLayoutItemLegend, QgsLayoutItemMap, QgsLayoutItemScaleBar,
+                       QgsLayoutPoint, QgsLayoutSize, QgsMapLayerLegendUtils, QgsPrintLayout, QgsProject,
+                       QgsLegendRenderer, QgsLegendStyle, QgsRasterLayer, QgsRectangle,
+                       QgsUnitTypes, QgsVectorLayer)
+from qgis.PyQt.QtGui import QColor, QFont  # noqa: E402
+
+# The layers of each process by group, in the layer panel's order (top first); the first group's
+# layers and the vectors are switched on.
+GROUPS = {
+    "rockfall": [("Intensity", ["intensity"]),
+                 ("Energy and motion", ["energy_p95", "energy_max", "velocity_max", "jump_height_p95"]),
+                 ("Probability and counts", ["reach_probability", "passages", "source_count", "deposits"]),
+                 ("Energy losses", ["energy_loss_friction", "energy_loss_deformation"])],
+    "mudflow": [("Intensity", ["intensity"]),
+                ("Flow", ["flow_depth_max", "velocity_max", "pressure_max", "arrival_time"]),
+                ("Deposit and erosion", ["deposit_depth", "erosion_depth"])],
+}
+PROCESS_WORDS = {"rockfall": "Rock fall", "mudflow": "Mud flow"}
+QUICKLOOKS = {"rockfall": ["intensity", "energy_p95", "reach_probability", "velocity_max"],
+              "mudflow": ["intensity", "flow_depth_max", "velocity_max", "arrival_time"]}
+
+PAGE_MM = (297.0, 210.0)  # A4 landscape
+MAP_MM = (10.0, 22.0, 180.0, 176.0)  # x, y, width, height
+QUICKLOOK_DPI = 100
+
+
+def title_of(layer, name):
+    """The .qmd title QGIS read with the layer, else the file stem."""
+    layer.loadDefaultMetadata()
+    return layer.metadata().title() or name
+
+
+def band_heading(path):
+    """The band description with its unit, for the legend's heading (no "Band 1:" prefix)."""
+    dataset = gdal.Open(path)  # kept while its band is read
+    return dataset.GetRasterBand(1).GetDescription()
+
+
+def hillshade(dem_path, path):
+    """GDAL's multidirectional hillshade of the DEM (Byte, as gdaldem writes it) at `path`, drawn
+    grey with bilinear smoothing. QGIS's own hillshade renderer shades the cells it is given, so
+    zoomed in it draws every cell edge as a line."""
+    shaded = gdal.DEMProcessing(path, dem_path, "hillshade", format="GTiff", multiDirectional=True,
+                                creationOptions=["COMPRESS=DEFLATE", "TILED=YES"])
+    if shaded is None:
+        raise RuntimeError(f"{dem_path}: GDAL could not shade the DEM")
+    shaded = None  # closes the file
+    layer = QgsRasterLayer(path, "Hillshade", "gdal")
+    if not layer.isValid():
+        raise RuntimeError(f"{path}: QGIS cannot open the hillshade")
+    layer.resampleFilter().setZoomedInResampler(QgsBilinearRasterResampler())
+    layer.resampleFilter().setZoomedOutResampler(QgsBilinearRasterResampler())
+    return layer
+
+
+def release_layer(path):
+    """The release as QGIS opens it: a vector layer, else a raster."""
+    layer = QgsVectorLayer(path, "Release", "ogr")
+    if layer.isValid():
+        symbol = layer.renderer().symbol() if hasattr(layer.renderer(), "symbol") else None
+        if symbol is not None:
+            symbol.setColor(QColor(0, 0, 0, 0) if layer.geometryType() == 2 else QColor("#000000"))
+            if layer.geometryType() == 2:
+                symbol.symbolLayer(0).setStrokeColor(QColor("#000000"))
+                symbol.symbolLayer(0).setStrokeWidth(0.5)
+        return layer
+    layer = QgsRasterLayer(path, "Release", "gdal")
+    return layer if layer.isValid() else None
+
+
+def reached_extent(path, margin_cells=10):
+    """The bounding box of the cells above 0, widened by a margin; the whole grid when none."""
+    dataset = gdal.Open(path)
+    values = dataset.GetRasterBand(1).ReadAsArray()
+    x0, dx, _, y0, _, dy = dataset.GetGeoTransform()
+    rows, cols = (values > 0).nonzero()
+    if len(rows) == 0:
+        rows, cols = [0, values.shape[0] - 1], [0, values.shape[1] - 1]
+    top, bottom = max(min(rows) - margin_cells, 0), min(max(rows) + margin_cells + 1, values.shape[0])
+    left, right = max(min(cols) - margin_cells, 0), min(max(cols) + margin_cells + 1, values.shape[1])
+    return QgsRectangle(x0 + left * dx, y0 + bottom * dy, x0 + right * dx, y0 + top * dy)
+
+
+def with_aspect(extent, aspect):
+    """`extent` widened about its centre to the width / height ratio `aspect`."""
+    width, height = extent.width(), extent.height()
+    if width / height < aspect:
+        width = height * aspect
+    else:
+        height = width / aspect
+    centre = extent.center()
+    return QgsRectangle(centre.x() - width / 2, centre.y() - height / 2, centre.x() + width / 2,
+                        centre.y() + height / 2)
+
+
+def quicklook(project, layer, heading, base_layers, extent, path):
+    """One A4 page: the layer over the base layers, legend, scale bar and title, as PNG."""
+    layout = QgsPrintLayout(project)
+    layout.initializeDefaults()
+    layout.pageCollection().page(0).setPageSize(QgsLayoutSize(*PAGE_MM, QgsUnitTypes.LayoutMillimeters))
+    x, y, width, height = MAP_MM
+    map_item = QgsLayoutItemMap(layout)
+    map_item.attemptMove(QgsLayoutPoint(x, y, QgsUnitTypes.LayoutMillimeters))
+    map_item.attemptResize(QgsLayoutSize(width, height, QgsUnitTypes.LayoutMillimeters))
+    map_item.setFrameEnabled(True)
+    layout.addLayoutItem(map_item)
+    map_item.setCrs(layer.crs())
+    map_item.setLayers([layer] + base_layers)
+    map_item.setExtent(with_aspect(extent, width / height))  # the item's own shape: no resize
+
+    label = QgsLayoutItemLabel(layout)
+    label.setText(layer.name())
+    label.setFont(QFont("DejaVu Sans", 16))
+    label.attemptMove(QgsLayoutPoint(x, 8, QgsUnitTypes.LayoutMillimeters))
+    label.attemptResize(QgsLayoutSize(PAGE_MM[0] - 20, 12, QgsUnitTypes.LayoutMillimeters))
+    layout.addLayoutItem(label)
+
+    legend = QgsLayoutItemLegend(layout)
+    legend.setLinkedMap(map_item)
+    legend.setAutoUpdateModel(False)
+    root = QgsLayerTree()
+    node = root.addLayer(layer)
+    QgsMapLayerLegendUtils.setLegendNodeUserLabel(node, 0, heading)
+    QgsLegendRenderer.setNodeLegendStyle(node, QgsLegendStyle.Hidden)  # the title names the layer
+    legend.model().setRootGroup(root)
+    legend.model().refreshLayerLegend(node)
+    legend.setTitle("")
+    legend.attemptMove(QgsLayoutPoint(x + width + 8, y, QgsUnitTypes.LayoutMillimeters))
+    layout.addLayoutItem(legend)
+
+    scale = QgsLayoutItemScaleBar(layout)
+    scale.setStyle("Single Box")
+    scale.setLinkedMap(map_item)
+    scale.setUnits(QgsUnitTypes.DistanceMeters)
+    scale.setUnitLabel("m")
+    scale.applyDefaultSize()
+    scale.attemptMove(QgsLayoutPoint(x + width + 8, y + height - 15, QgsUnitTypes.LayoutMillimeters))
+    layout.addLayoutItem(scale)
+
+    settings = QgsLayoutExporter.ImageExportSettings()
+    settings.dpi = QUICKLOOK_DPI
+    settings.exportMetadata = False  # GDAL cannot add it to a PNG
+    # QGIS then tries to georeference the PNG through GDAL, which cannot update a PNG: quiet.
+    gdal.PushErrorHandler("CPLQuietErrorHandler")
+    result = QgsLayoutExporter(layout).exportToImage(path, settings)
+    gdal.PopErrorHandler()
+    if result != QgsLayoutExporter.Success:
+        raise RuntimeError(f"{path}: the layout could not be exported (QGIS code {result})")
+    return root  # the legend's tree must outlive the export
+
+
+def build(out, process, dem_path, release_path):
+    project = QgsProject.instance()
+    temporary_hillshade = os.path.join(out, ".hillshade.part.tif")
+    base = hillshade(dem_path, temporary_hillshade)
+    project.setCrs(base.crs())
+    root = project.layerTreeRoot()
+    group = root.addGroup(PROCESS_WORDS[process])
+    layers = {}
+    for group_name, names in GROUPS[process]:
+        sub = group.addGroup(group_name)
+        for name in names:
+            path = os.path.join(out, name + ".tif")
+            if not os.path.exists(path):
+                continue
+            layer = QgsRasterLayer(path, name, "gdal")  # loads NAME.qml
+            if not layer.isValid():
+                raise RuntimeError(f"{path}: QGIS cannot open the layer")
+            layer.setName(title_of(layer, name))
+            project.addMapLayer(layer, False)
+            node = sub.addLayer(layer)
+            QgsMapLayerLegendUtils.setLegendNodeUserLabel(node, 0, band_heading(path))
+            node.setItemVisibilityChecked(group_name == "Intensity")
+            layers[name] = (layer, path)
+        sub.setExpanded(group_name == "Intensity")
+    vectors = []
+    trajectories = os.path.join(out, "trajectories.gpkg")
+    if os.path.exists(trajectories):
+        lines = QgsVectorLayer(trajectories + "|layername=trajectories", "Trajectories (sample)", "ogr")
+        if lines.isValid():
+            vectors.append(lines)
+    if release_path:
+        release = release_layer(release_path)
+        if release is not None:
+            vectors.append(release)
+    for layer in reversed(vectors):
+        project.addMapLayer(layer, False)
+        root.insertLayer(0, layer)
+    project.addMapLayer(base, False)
+    root.addLayer(base)
+
+    quicklook_dir = os.path.join(out, ".quicklook.part")
+    shutil.rmtree(quicklook_dir, ignore_errors=True)
+    os.makedirs(quicklook_dir)
+    keep = []
+    for name in QUICKLOOKS[process]:
+        if name not in layers:
+            continue
+        layer, path = layers[name]
+        release = [v for v in vectors if v.name() == "Release"]
+        keep.append(quicklook(project, layer, band_heading(path), release + [base], reached_extent(path),
+                              os.path.join(quicklook_dir, name + ".png")))
+
+    # The project names the hillshade by its final path, so it is renamed first.
+    os.replace(temporary_hillshade, os.path.join(out, "hillshade.tif"))
+    base.setDataSource(os.path.join(out, "hillshade.tif"), "Hillshade", "gdal")
+    base.resampleFilter().setZoomedInResampler(QgsBilinearRasterResampler())
+    base.resampleFilter().setZoomedOutResampler(QgsBilinearRasterResampler())
+    temporary = os.path.join(out, ".project.part.qgz")
+    if not project.write(temporary):
+        raise RuntimeError(f"{temporary}: QGIS could not write the project: {project.error()}")
+    os.replace(temporary, os.path.join(out, "project.qgz"))
+    final_dir = os.path.join(out, "quicklook")
+    shutil.rmtree(final_dir, ignore_errors=True)
+    os.replace(quicklook_dir, final_dir)
+
+
+def main():
+    if len(sys.argv) not in (4, 5) or sys.argv[2] not in GROUPS:
+        print(__doc__, file=sys.stderr)
+        return 2
+    out, process, dem = sys.argv[1:4]
+    release = sys.argv[4] if len(sys.argv) == 5 else ""
+    app = QgsApplication([], False)
+    app.initQgis()
+    try:
+        build(out, process, dem, release)
+    except RuntimeError as error:
+        print(f"project: {error}", file=sys.stderr)
+        os._exit(1)
+    # exitQgis after layouts may crash in 3.22 (docs/qgis.md); everything is written by now.
+    os._exit(0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""Opens a run's project.qgz in QGIS and checks it and the quicklooks (issue 17, item 8).
+
+usage: check_run_project.py OUT_DIR PROCESS LAYER [LAYER ...]
+
+The project reads; every layer in it is valid; it holds each LAYER (a file stem) under its .qmd
+title, the hillshade and the release, in the process's group; the hillshade lies at the bottom;
+quicklook/LAYER.png exists for each LAYER given and is not blank (it holds the layer's colours
+and the hillshade's greys, not one flat colour). Prints one line per problem; exit 0 when none.
+"""
+import os
+import sys
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+os.environ["GDAL_PAM_ENABLED"] = "NO"
+
+from qgis.core import QgsApplication, QgsProject  # noqa: E402
+from qgis.PyQt.QtGui import QImage  # noqa: E402
+
+GROUP = {"rockfall": "Rock fall", "mudflow": "Mud flow"}
+
+
+def quicklook_problems(path):
+    image = QImage(path)
+    if image.isNull():
+        return [f"{path}: not an image"]
+    colours, white = set(), 0
+    step = 7
+    samples = 0
+    for y in range(0, image.height(), step):
+        for x in range(0, image.width(), step):
+            rgb = image.pixel(x, y) & 0xFFFFFF
+            colours.add(rgb)
+            white += rgb == 0xFFFFFF
+            samples += 1
+    problems = []
+    if len(colours) < 50:
+        problems.append(f"{path}: only {len(colours)} colours: blank or flat")
+    if white > 0.8 * samples:
+        problems.append(f"{path}: {100 * white // samples} % white: the map is empty")
+    return problems
+
+
+def main():
+    if len(sys.argv) < 4:
+        print(__doc__)
+        return 2
+    out, process, names = sys.argv[1], sys.argv[2], sys.argv[3:]
+    app = QgsApplication([], False)
+    app.initQgis()
+    project = QgsProject.instance()
+    problems = []
+    if not project.read(os.path.join(out, "project.qgz")):
+        problems.append(f"{out}/project.qgz: QGIS cannot read it: {project.error()}")
+    layers = list(project.mapLayers().values())
+    for layer in layers:
+        if not layer.isValid():
+            problems.append(f"project layer '{layer.name()}' ({layer.source()}) is not valid")
+    by_file = {os.path.splitext(os.path.basename(layer.source().split("|")[0]))[0]: layer for layer in layers}
+    group = project.layerTreeRoot().findGroup(GROUP[process])
+    if group is None:
+        problems.append(f"no group '{GROUP[process]}' in the project")
+    for name in names:
+        layer = by_file.get(name)
+        if layer is None:
+            problems.append(f"{name}: not in the project")
+            continue
+        layer.loadDefaultMetadata()
+        if layer.name() != layer.metadata().title():
+            problems.append(f"{name}: named '{layer.name()}', not its title '{layer.metadata().title()}'")
+        if group is not None and group.findLayer(layer.id()) is None:
+            problems.append(f"{name}: not in the group '{GROUP[process]}'")
+        problems += quicklook_problems(os.path.join(out, "quicklook", name + ".png"))
+    for needed in ("hillshade", "Release"):
+        if not any(needed.lower() in (layer.name() + layer.source()).lower() for layer in layers):
+            problems.append(f"no {needed} layer in the project")
+    bottom = project.layerTreeRoot().layerOrder()[-1] if layers else None
+    if bottom is None or bottom.name() != "Hillshade":
+        problems.append(f"the bottom layer is {bottom.name() if bottom else None}, not the hillshade")
+    for problem in problems:
+        print(problem)
+    os._exit(1 if problems else 0)  # exitQgis after reading a project may crash in QGIS 3.22
+
+
+if __name__ == "__main__":
+    main()
