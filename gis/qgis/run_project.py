@@ -12,7 +12,8 @@ PROCESS is rockfall or mudflow. Writes into OUT_DIR:
   the process reached, with its legend, a scale bar and its title, drawn by QGIS's own layout
   renderer.
 Both are written under temporary names and renamed when complete. The talus program runs this
-script after it has committed the layers; it runs on Debian's /usr/bin/python3 (python3-qgis).
+script on the staging folder of the run's set, before the commit, which OUT_DIR then is; it runs
+on Debian's /usr/bin/python3 (python3-qgis).
 """
 import os
 import shutil

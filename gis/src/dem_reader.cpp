@@ -1,6 +1,8 @@
 // DEM reading with the CRS rules of DESIGN.md section 3.
 #include "talus/gis/dem_reader.hpp"
 
+#include <unistd.h>
+
 #include <gdal_utils.h>
 #include <ogr_spatialref.h>
 
@@ -122,6 +124,77 @@ void require_metre_units(const OGRSpatialReference& srs, GDALRasterBand& band, c
   }
 }
 
+// Elevations on Earth (m): from the deepest sea floor (Challenger Deep, about -10,935 m) to the
+// highest summit (Everest, 8,849 m), rounded out (docs/inputs.md, "Plausible terrain").
+constexpr double kLowestElevation = -11000.0;
+constexpr double kHighestElevation = 9000.0;
+// Cell sizes (m) Talus accepts: from survey-grade lidar to the coarsest global DEMs and beyond.
+constexpr double kSmallestCell = 0.01;
+constexpr double kLargestCell = 10000.0;
+// Coordinates (m) beyond this lie off any projected CRS of the Earth (its circumference is 4e7 m).
+constexpr double kLargestCoordinate = 1e8;
+
+// The grid's georeferencing is one of a DEM on Earth: cell sizes and corner coordinates in range,
+// and an elevation grid that fits in this machine's memory.
+void require_plausible_grid(const GridSpec& spec, const std::string& name) {
+  const double dx = std::abs(spec.geotransform[1]), dy = std::abs(spec.geotransform[5]);
+  if (!(dx >= kSmallestCell && dx <= kLargestCell && dy >= kSmallestCell && dy <= kLargestCell)) {
+    std::ostringstream message;
+    message << name << ": cells of " << dx << " x " << dy << " m; expected " << kSmallestCell << "-" << kLargestCell
+            << " m (are the coordinates in metres?)";
+    throw InputError(message.str());
+  }
+  const double corners[] = {spec.geotransform[0], spec.geotransform[3],
+                            spec.geotransform[0] + spec.width * spec.geotransform[1],
+                            spec.geotransform[3] + spec.height * spec.geotransform[5]};
+  for (const double c : corners) {
+    if (!(std::abs(c) <= kLargestCoordinate)) {
+      std::ostringstream message;
+      message << name << ": a corner coordinate of " << c << " m lies beyond " << kLargestCoordinate
+              << " m, off any projected CRS of the Earth";
+      throw InputError(message.str());
+    }
+  }
+  const double bytes = static_cast<double>(spec.cell_count()) * sizeof(double);
+  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  if (memory > 0 && bytes > memory) {
+    std::ostringstream message;
+    message.precision(3);
+    message << name << ": " << spec.width << " x " << spec.height << " cells need " << bytes / 1e9
+            << " GB for the elevations alone, more than this machine's " << memory / 1e9 << " GB of memory";
+    throw InputError(message.str());
+  }
+}
+
+// Elevations outside kLowestElevation-kHighestElevation cannot be terrain. When they all hold one
+// value, it is an undeclared nodata value (ESRI's -3.4028235e38, say) and they become nodata (a
+// note says so); mixed impossible values are refused.
+void treat_impossible_elevations(std::vector<double>& values, double nodata, const std::string& name,
+                                 std::vector<std::string>& notes) {
+  std::size_t count = 0;
+  double first = 0.0;
+  bool one_value = true;
+  for (const double v : values) {
+    if (v == nodata || (v >= kLowestElevation && v <= kHighestElevation)) continue;
+    if (count == 0) first = v;
+    one_value = one_value && v == first;
+    ++count;
+  }
+  if (count == 0) return;
+  std::ostringstream text;
+  text.precision(9);
+  if (!one_value) {
+    text << name << ": " << count << " cells hold elevations outside " << kLowestElevation << " to "
+         << kHighestElevation << " m (" << first << " m, and others), impossible on Earth; declare the nodata value "
+         << "or convert the elevations to metres";
+    throw InputError(text.str());
+  }
+  for (double& v : values)
+    if (v == first) v = nodata;
+  text << count << " cells of elevation " << first << " m (impossible on Earth, an undeclared nodata value) taken as nodata";
+  notes.push_back(text.str());
+}
+
 }  // namespace
 
 std::string crs_display_name(const std::string& wkt) {
@@ -184,6 +257,7 @@ DemInput read_dem(const std::filesystem::path& path, const CrsOption& crs) {
   }
   spec.crs_wkt = crs.kind == CrsOption::Kind::local ? std::string() : wkt_of(&srs);
   spec.nodata = input_nodata;
+  require_plausible_grid(spec, name);
 
   GDALRasterBand* band = dataset->GetRasterBand(1);
   int has_nodata = 0;
@@ -196,6 +270,7 @@ DemInput read_dem(const std::filesystem::path& path, const CrsOption& crs) {
   for (double& v : values) {
     if (!std::isfinite(v) || (has_nodata && v == file_nodata)) v = input_nodata;
   }
+  treat_impossible_elevations(values, input_nodata, name, result.notes);
   result.elevation = Grid<double>(spec, std::move(values));
   if (const std::size_t zeros = mark_zero_border_as_nodata(result.elevation); zeros > 0) {
     result.notes.push_back(std::to_string(zeros) + " cells of elevation 0 m around the border taken as nodata");

@@ -5,7 +5,6 @@
 
 #include <cpl_error.h>
 #include <gdal_priv.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -169,35 +168,20 @@ void remove_quietly(const std::filesystem::path& path) {
 
 }  // namespace
 
-LayerWriter::LayerWriter(std::filesystem::path out_dir, std::map<std::string, std::string> metadata)
-    : out_dir_(std::move(out_dir)), metadata_(std::move(metadata)), written_at_(utc_now()) {
+LayerWriter::LayerWriter(const std::filesystem::path& out_dir, std::map<std::string, std::string> metadata)
+    : staged_(out_dir), metadata_(std::move(metadata)), written_at_(utc_now()) {
   metadata_["TALUS_VERSION"] = TALUS_VERSION;
-  std::error_code error;
-  std::filesystem::create_directories(out_dir_, error);
-  if (error) throw InputError("cannot create the output folder " + out_dir_.string() + ": " + error.message());
-  if (::access(out_dir_.c_str(), W_OK) != 0)
-    throw InputError("cannot write into the output folder " + out_dir_.string());
-}
-
-LayerWriter::~LayerWriter() {
-  if (committed_) return;
-  for (const auto& entry : pending_) remove_quietly(entry.first);
 }
 
 std::filesystem::path LayerWriter::temporary_path(const std::string& file_name) {
-  const auto final_path = out_dir_ / file_name;
-  if (committed_) throw std::logic_error("layer set in " + out_dir_.string() + " already committed: " + file_name);
-  if (std::ranges::any_of(pending_, [&](const auto& entry) { return entry.second == final_path; }))
-    throw std::logic_error("layer set already has " + final_path.string());
-  pending_.emplace_back(out_dir_ / ("." + file_name + ".part"), final_path);
-  return pending_.back().first;
+  if (!names_.insert(file_name).second) throw std::logic_error("layer set already has " + file_name);
+  return staged_.staging() / file_name;
 }
 
 void LayerWriter::add(const Grid<float>& values, const LayerDescription& layer) {
   const auto style = layer.style_qml.empty() ? embedded_style(layer.name) : std::string_view(layer.style_qml);
   if (!style) throw std::logic_error("no QML style in gis/styles for layer " + layer.name);
-  const auto final_path = out_dir_ / (layer.name + ".tif");
-  const auto first_new = pending_.size();
+  const auto final_path = folder() / (layer.name + ".tif");
   const auto tif = temporary_path(layer.name + ".tif");
   const auto qml = temporary_path(layer.name + ".qml");
   const auto qmd = temporary_path(layer.name + ".qmd");
@@ -210,26 +194,17 @@ void LayerWriter::add(const Grid<float>& values, const LayerDescription& layer) 
     const bool copied = written != nullptr;
     written.reset();  // closes the file; GDAL 3.6 reports a failed close through the error state only
     if (!copied || CPLGetLastErrorType() == CE_Failure) gdal_failure(final_path, "writing the Cloud Optimized GeoTIFF");
-    write_text(qml, *style, out_dir_ / (layer.name + ".qml"));
-    write_text(qmd, qgis_layer_metadata(layer_metadata(layer, metadata_, written_at_)), out_dir_ / (layer.name + ".qmd"));
+    write_text(qml, *style, folder() / (layer.name + ".qml"));
+    write_text(qmd, qgis_layer_metadata(layer_metadata(layer, metadata_, written_at_)), folder() / (layer.name + ".qmd"));
   } catch (...) {
-    while (pending_.size() > first_new) {
-      remove_quietly(pending_.back().first);
-      pending_.pop_back();
+    for (const auto& path : {tif, qml, qmd}) {
+      remove_quietly(path);
+      names_.erase(path.filename().string());
     }
     throw;
   }
 }
 
-void LayerWriter::commit() {
-  for (const auto& [temporary, final_path] : pending_) {
-    std::error_code error;
-    std::filesystem::rename(temporary, final_path, error);
-    if (error)
-      throw std::runtime_error("cannot rename " + temporary.string() + " to " + final_path.string() + ": " +
-                               error.message());
-  }
-  committed_ = true;
-}
+void LayerWriter::commit() { staged_.commit(); }
 
 }  // namespace talus::gis

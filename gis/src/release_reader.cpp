@@ -125,9 +125,8 @@ Grid<int> rasterize(const std::vector<ReleasePolygon>& polygons, const GridSpec&
   for (std::size_t k = 0; k < polygons.size(); ++k) {
     OGRPoint centroid;
     if (polygons[k].geometry->Centroid(&centroid) != OGRERR_NONE) continue;
-    const int col = static_cast<int>(std::floor((centroid.getX() - gt[0]) / gt[1]));
-    const int row = static_cast<int>(std::floor((centroid.getY() - gt[3]) / gt[5]));
-    if (spec.contains_cell(col, row) && polygon_of_cell.at(col, row) == 0) {
+    int col = 0, row = 0;
+    if (spec.cell_at(centroid.getX(), centroid.getY(), col, row) && polygon_of_cell.at(col, row) == 0) {
       polygon_of_cell.at(col, row) = static_cast<int>(k + 1);
     }
   }
@@ -206,9 +205,8 @@ ReleaseSet release_from_vector(GDALDataset& dataset, const std::filesystem::path
   std::size_t index = 0;
   for (const auto& p : points) {
     ++index;
-    const int col = static_cast<int>(std::lround(spec.col_of(p.x)));
-    const int row = static_cast<int>(std::lround(spec.row_of(p.y)));
-    if (!dem.is_valid(col, row)) {
+    int col = 0, row = 0;
+    if (!spec.cell_at(p.x, p.y, col, row) || !dem.is_valid(col, row)) {
       std::ostringstream message;
       message.precision(10);
       message << name << ": point " << index << " of " << points.size() << " (x " << p.x << ", y " << p.y

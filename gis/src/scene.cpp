@@ -145,6 +145,13 @@ void require_release_depths(const std::filesystem::path& path, const ReleaseDept
       throw InputError(name + ": holds only 0 and 1, a mask, not depths; give the release depth with --depth M "
                               "(m), or a raster of depths (m)");
     }
+    const float deepest = *std::max_element(release.depth.values().begin(), release.depth.values().end());
+    if (deepest > kMaxReleaseDepth) {
+      std::ostringstream message;
+      message << name << ": a release depth of " << deepest << " m; expected depths of at most " << kMaxReleaseDepth
+              << " m (are they in centimetres?)";
+      throw InputError(message.str());
+    }
     return;
   }
   for (OGRLayer* layer : dataset->GetLayers()) {
@@ -161,6 +168,14 @@ void require_release_depths(const std::filesystem::path& path, const ReleaseDept
       if (!feature->IsFieldSetAndNotNull(depth_field) || feature->GetFieldAsDouble(depth_field) == 0.0) {
         throw InputError(name + ": feature " + std::to_string(feature->GetFID()) + " of layer '" + layer_name +
                          "' has no release depth (`" + source.field + "` is empty or 0 m)");
+      }
+      const double depth = std::abs(feature->GetFieldAsDouble(depth_field));
+      if (!(depth <= kMaxReleaseDepth)) {  // also NaN and infinity
+        std::ostringstream message;
+        message << name << ": feature " << feature->GetFID() << " of layer '" << layer_name << "' has a release depth ("
+                << source.field << ") of " << feature->GetFieldAsDouble(depth_field) << " m; expected at most "
+                << kMaxReleaseDepth << " m";
+        throw InputError(message.str());
       }
     }
   }

@@ -270,9 +270,6 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(start.has_value(), "outputs", "snapshot_start", o.snapshot_start,
                 "expected a date-time YYYY-MM-DDTHH:MM:SS, years 1000-9999");
   o.snapshot_start_seconds = *start;
-  if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
-    throw InputError(o.out.string() + " (--out): exists and is not a folder");
-  }
 }
 
 // The run in one line, for the TALUS_SCENARIO metadata of every layer.
@@ -395,6 +392,8 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   validate(o, table);
   const std::optional<IntensityScheme> intensity = chosen_intensity(o.intensity, "mudflow", hazard_layers(FlowLayers{}));
   const bool project = project_wanted(o.project);
+  // The output folder is checked and staged before any work (issue 18, item 3).
+  gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "mud flow"}, {"TALUS_SCENARIO", scenario_text(o)}});
 
   const auto start = std::chrono::steady_clock::now();
   gis::RunRecord record;
@@ -417,7 +416,6 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();
-  gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "mud flow"}, {"TALUS_SCENARIO", scenario_text(o)}});
   const nlohmann::json intensity_entry = write_layers_with_intensity(writer, hazard_layers(result.layers), intensity);
   if (o.settings.snapshot_interval > 0.0) {
     gis::add_particle_snapshots(writer, result.snapshots, o.settings.snapshot_interval, ground.spec().crs_wkt,
@@ -429,11 +427,12 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   record.add_timing("simulate", simulate_seconds);
   record.add_timing("write_layers", seconds_since(write_start));
   record.write(writer.temporary_path("run.json"));
+  const std::string project_line =
+      write_project_if_wanted(project, writer.staging_folder(), o.out, "mudflow", o.inputs.dem, o.inputs.release);
   writer.commit();
   if (intensity) std::printf("%s\n", intensity_summary(intensity_entry).c_str());
   print_summary(result, simulate_seconds, o.out);
-  std::fflush(stdout);
-  write_project_if_wanted(project, o.out, "mudflow", o.inputs.dem, o.inputs.release);
+  if (!project_line.empty()) std::printf("%s\n", project_line.c_str());
   return 0;
 }
 

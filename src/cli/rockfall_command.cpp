@@ -293,11 +293,10 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
     throw InputError("[rock] fracture_strength " + std::to_string(o.fracture_strength) + ": expected a force > 0 kN");
   }
   o.full.fracture_strength = 1000.0 * o.fracture_strength;
-  if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
-    throw InputError(o.out.string() + " (--out): exists and is not a folder");
-  }
   const std::optional<IntensityScheme> intensity = chosen_intensity(o.intensity, "rockfall", hazard_layers(RockfallLayers{}));
   const bool project = project_wanted(o.project);
+  // The output folder is checked and staged before any work (issue 18, item 3).
+  gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", scenario_text(o)}});
 
   const auto start = std::chrono::steady_clock::now();
   gis::RunRecord record;
@@ -331,7 +330,6 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();
-  gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", scenario_text(o)}});
   const nlohmann::json intensity_entry = write_layers_with_intensity(writer, hazard_layers(result.statistics.layers()), intensity);
   gis::add_trajectories(writer, result.lines, ground.spec().crs_wkt);
 
@@ -373,6 +371,8 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   record.add_timing("simulate", simulate_seconds);
   record.add_timing("write_layers", seconds_since(write_start));
   record.write(writer.temporary_path("run.json"));
+  const std::string project_line =
+      write_project_if_wanted(project, writer.staging_folder(), o.out, "rockfall", o.inputs.dem, o.inputs.release);
   writer.commit();
 
   std::printf("%llu trajectories in %.2f s (%.0f per second, %d threads); stopped: ",
@@ -389,8 +389,7 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   for (const auto& problem : unconverged) std::printf("problem: %s\n", problem.c_str());
   if (intensity) std::printf("%s\n", intensity_summary(intensity_entry).c_str());
   std::printf("Layers written to %s (open the .tif files in QGIS: each has its style beside it)\n", o.out.c_str());
-  std::fflush(stdout);
-  write_project_if_wanted(project, o.out, "rockfall", o.inputs.dem, o.inputs.release);
+  if (!project_line.empty()) std::printf("%s\n", project_line.c_str());
   return 0;
 }
 

@@ -40,15 +40,16 @@ std::string last_line(const std::string& text) {
 
 }  // namespace
 
-RunProjectOutcome write_run_project(const std::filesystem::path& out, const std::string& process,
+RunProjectOutcome write_run_project(const std::filesystem::path& staging, const std::filesystem::path& out,
+                                    const std::string& process,
                                     const std::filesystem::path& dem, const std::filesystem::path& release,
                                     double timeout_s) {
   const std::filesystem::path python = python_program();
   if (::access(python.c_str(), X_OK) != 0) {
     return {false, true, "no project.qgz or quicklooks: " + python.string() + " (with python3-qgis) is not installed"};
   }
-  const auto script = out / ".run_project.py";
-  const auto errors = out / ".run_project.err";
+  const auto script = staging / ".run_project.py";
+  const auto errors = staging / ".run_project.err";
   {
     std::ofstream file(script);
     file << kRunProjectScript;
@@ -56,7 +57,7 @@ RunProjectOutcome write_run_project(const std::filesystem::path& out, const std:
   }
   const std::vector<std::string> arguments = {python.string(),
                                               script.string(),
-                                              std::filesystem::absolute(out).string(),
+                                              std::filesystem::absolute(staging).string(),
                                               process,
                                               std::filesystem::absolute(dem).string(),
                                               release.empty() ? std::string() : std::filesystem::absolute(release).string()};
@@ -91,7 +92,7 @@ RunProjectOutcome write_run_project(const std::filesystem::path& out, const std:
   std::filesystem::remove(script, ignored);
   std::filesystem::remove(errors, ignored);
   for (const char* part : {".project.part.qgz", ".hillshade.part.tif", ".quicklook.part"})
-    std::filesystem::remove_all(out / part, ignored);
+    std::filesystem::remove_all(staging / part, ignored);
   if (timed_out) return {false, false, "no project.qgz or quicklooks: QGIS took longer than " + std::to_string(int(timeout_s)) + " s"};
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const bool no_qgis = reason.find("No module named 'qgis'") != std::string::npos;
@@ -108,12 +109,13 @@ bool project_wanted(const std::string& setting) {
   throw InputError("--project " + setting + ": use on or off");
 }
 
-void write_project_if_wanted(bool wanted, const std::filesystem::path& out, const std::string& process,
-                             const std::filesystem::path& dem, const std::filesystem::path& release) {
-  if (!wanted) return;
-  const RunProjectOutcome outcome = write_run_project(out, process, dem, release, 600.0);
+std::string write_project_if_wanted(bool wanted, const std::filesystem::path& staging, const std::filesystem::path& out,
+                                    const std::string& process, const std::filesystem::path& dem,
+                                    const std::filesystem::path& release) {
+  if (!wanted) return {};
+  const RunProjectOutcome outcome = write_run_project(staging, out, process, dem, release, 600.0);
   const char* kind = outcome.written ? "" : outcome.qgis_missing ? "note: " : "problem: ";
-  std::printf("%s%s\n", kind, outcome.message.c_str());
+  return kind + outcome.message;
 }
 
 }  // namespace talus::cli

@@ -47,6 +47,32 @@ class BadInputs : public ::testing::TestWithParam<BadInput> {
     write_raster(inputs_ / "lithology_unknown.tif", unknown);
     test::write_vector(inputs_ / "release_outside.gpkg", "EPSG:32632", {{"POINT(510000 5210000)", 0}}, false);
     test::write_vector(inputs_ / "release_empty.gpkg", "EPSG:32632", {}, false);
+    // Terrain no DEM of the Earth has (issue 18, item 2).
+    RasterFixture tiny_cells;
+    tiny_cells.cell = 1e-142;
+    write_raster(inputs_ / "dem_tiny_cells.tif", tiny_cells);
+    RasterFixture huge_cells;
+    huge_cells.cell = 50000.0;
+    write_raster(inputs_ / "dem_huge_cells.tif", huge_cells);
+    RasterFixture far_corner;
+    far_corner.x0 = 3e12;
+    write_raster(inputs_ / "dem_far_corner.tif", far_corner);
+    RasterFixture impossible;
+    impossible.value = [](int c, int r) { return c < 5 ? 1e12 * (r + 1) : 1000.0 - r; };
+    write_raster(inputs_ / "dem_impossible_elevations.tif", impossible);
+    RasterFixture feet_like;  // elevations of a DEM in millimetres
+    feet_like.value = [](int, int r) { return 1.5e6 - 1000.0 * r; };
+    write_raster(inputs_ / "dem_in_millimetres.tif", feet_like);
+    // A header of 200000 x 200000 cells (40 billion: 320 GB of elevations) over a real file.
+    std::ofstream(inputs_ / "dem_huge_header.vrt")
+        << "<VRTDataset rasterXSize=\"200000\" rasterYSize=\"200000\"><SRS>EPSG:32632</SRS>"
+           "<GeoTransform>500000, 1, 0, 5200000, 0, -1</GeoTransform><VRTRasterBand dataType=\"Float32\" band=\"1\">"
+           "<SimpleSource><SourceFilename relativeToVRT=\"1\">dem.tif</SourceFilename><SourceBand>1</SourceBand>"
+           "</SimpleSource></VRTRasterBand></VRTDataset>\n";
+    // Release points 2^32 + 100 cells east of the DEM's corner (10 m cells), and far beyond.
+    test::write_vector(inputs_ / "release_wrapping.gpkg", "EPSG:32632", {{"POINT(42950173965 5199850)", 0}}, false);
+    test::write_vector(inputs_ / "release_1e300.gpkg", "EPSG:32632", {{"POINT(1e300 5199850)", 0}}, false);
+    test::write_vector(inputs_ / "release_west.gpkg", "EPSG:32632", {{"POINT(-42949171955 5199850)", 0}}, false);
   }
   static void TearDownTestSuite() { std::filesystem::remove_all(inputs_); }
   static std::filesystem::path inputs_;
@@ -90,8 +116,44 @@ INSTANTIATE_TEST_SUITE_P(
                  "outside the DEM"},
         BadInput{"empty_release", {"dem.tif", "--release", "release_empty.gpkg"}, "release_empty.gpkg",
                  "empty release"},
-        BadInput{"bad_crs_option", {"dem.tif", "--crs", "EPSG:999999"}, "--crs", "not a CRS"}),
+        BadInput{"bad_crs_option", {"dem.tif", "--crs", "EPSG:999999"}, "--crs", "not a CRS"},
+        BadInput{"dem_tiny_cells", {"dem_tiny_cells.tif"}, "dem_tiny_cells.tif", "expected 0.01-10000 m"},
+        BadInput{"dem_huge_cells", {"dem_huge_cells.tif"}, "dem_huge_cells.tif", "expected 0.01-10000 m"},
+        BadInput{"dem_far_corner", {"dem_far_corner.tif"}, "dem_far_corner.tif", "off any projected CRS"},
+        BadInput{"dem_impossible_elevations", {"dem_impossible_elevations.tif"}, "dem_impossible_elevations.tif",
+                 "impossible on Earth"},
+        BadInput{"dem_in_millimetres", {"dem_in_millimetres.tif"}, "dem_in_millimetres.tif", "impossible on Earth"},
+        BadInput{"dem_huge_header", {"dem_huge_header.vrt"}, "dem_huge_header.vrt", "more than this machine's"},
+        BadInput{"release_wrapping_column", {"dem.tif", "--release", "release_wrapping.gpkg"}, "release_wrapping.gpkg",
+                 "outside the DEM"},
+        BadInput{"release_far_beyond", {"dem.tif", "--release", "release_1e300.gpkg"}, "release_1e300.gpkg",
+                 "outside the DEM"},
+        BadInput{"release_wrapping_west", {"dem.tif", "--release", "release_west.gpkg"}, "release_west.gpkg",
+                 "outside the DEM"}),
     [](const ::testing::TestParamInfo<BadInput>& case_info) { return case_info.param.name; });
+
+// ESRI's usual nodata, -3.4028235e38, undeclared in the file across the path of the rocks: once
+// `talus rockfall` never finished here; the cells are now nodata and the run ends (issue 18).
+TEST(ImpossibleElevations, AnUndeclaredNodataValueBecomesNodataAndTheRunEnds) {
+  const auto work = test::fresh_folder("impossible_elevations_run");
+  RasterFixture slope;
+  slope.value = [](int c, int r) {
+    return r >= 15 && r < 18 && c > 10 && c < 30 ? -3.4028234663852886e38 : 1000.0 - 8.0 * r;  // -FLT_MAX
+  };
+  write_raster(work / "dem.tif", slope);
+  test::write_vector(work / "release.gpkg", "EPSG:32632", {{"POINT(500205 5199985)", 0}}, false);
+  const auto result = test::run_talus({"rockfall", "--dem", (work / "dem.tif").string(), "--release",
+                                       (work / "release.gpkg").string(), "--out", (work / "out").string(), "--runs",
+                                       "4", "--intensity", "none"},
+                                      work);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("note: 57 cells of elevation -3.40282347e+38 m (impossible on Earth, an undeclared nodata "
+                            "value) taken as nodata"),
+            std::string::npos)
+      << result.out;
+  const std::vector<float> passages = test::read_band(work / "out" / "passages.tif");
+  EXPECT_EQ(passages[16 * 40 + 20], -9999.0f);  // nodata in the layers too
+}
 
 TEST(Usage, UnknownOptionIsExitTwo) {
   const auto work = test::fresh_folder("usage_unknown_option");

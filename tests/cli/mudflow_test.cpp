@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -336,6 +337,18 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
   const auto root = test::fresh_folder("mudflow_bad");
   test::write_vector(root / "no_depth.gpkg", "EPSG:31287",
                      {{"POLYGON((255625 380500,255665 380500,255665 380460,255625 380460,255625 380500))", 0}}, false);
+  // Depths that are no release depth (issue 18, item 2): far too deep, infinite, a raster in cm.
+  const std::string polygon = "POLYGON((255625 380500,255665 380500,255665 380460,255625 380460,255625 380500))";
+  test::write_vector(root / "depth_5000.gpkg", "EPSG:31287", {{polygon, 5000.0}}, true);
+  test::write_vector(root / "depth_inf.gpkg", "EPSG:31287", {{polygon, std::numeric_limits<double>::infinity()}}, true);
+  test::write_vector(root / "depth_negative.gpkg", "EPSG:31287", {{polygon, -1e9}}, true);
+  test::RasterFixture centimetres;
+  centimetres.x0 = 255600.0;
+  centimetres.y0 = 380500.0;
+  centimetres.cell = 5.0;
+  centimetres.crs = "EPSG:31287";
+  centimetres.value = [](int c, int r) { return c > 5 && c < 12 && r > 5 && r < 12 ? 180.0 : 0.0; };
+  test::write_raster(root / "depth_cm.tif", centimetres);
   std::ofstream(root / "bad_density.toml") << "[mud]\ndensity = 50\n";
   std::ofstream(root / "old_friction.toml") << "[rheology]\nfriction_factor = 0.5\n";
   std::ofstream(root / "bad_friction.toml") << "[rheology]\nfriction = 1.5\n";
@@ -345,6 +358,11 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
   struct Case {
     std::vector<std::string> arguments;
     std::string message;
+  };
+  const auto replaced = [&](std::size_t k, const std::string& value) {
+    auto arguments = sample;
+    arguments[k] = value;
+    return arguments;
   };
   auto release_replaced = sample;
   release_replaced[8] = (root / "no_depth.gpkg").string();
@@ -375,6 +393,12 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
       {with(sample, {"--depth", "0.0001"}), "--depth 0.0001: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
       {with(sample, {"--depth", "nan"}), "--depth nan: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
       {with(sample, {"--depth", "500"}), "--depth 500: expected 0 (the release file's depths) or a depth of 0.01-100 m"},
+      {replaced(8, (root / "depth_5000.gpkg").string()),
+       "depth_5000.gpkg (release): feature 1 of layer 'release' has a release depth (depth) of 5000 m; expected at most 100 m"},
+      {replaced(8, (root / "depth_inf.gpkg").string()), "has a release depth (depth) of inf m"},
+      {replaced(8, (root / "depth_negative.gpkg").string()), "has a release depth (depth) of -1e+09 m"},
+      {replaced(8, (root / "depth_cm.tif").string()),
+       "depth_cm.tif (release): a release depth of 180 m; expected depths of at most 100 m (are they in centimetres?)"},
       {with(sample, {"--snapshots", "10", "--start-time", "tomorrow"}),
        "--start-time tomorrow: expected a date-time YYYY-MM-DDTHH:MM:SS, years 1000-9999"},
   };

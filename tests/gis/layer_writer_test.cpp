@@ -268,11 +268,14 @@ TEST(LayerWriter, ShowsNothingBeforeCommitAndLeavesNothingWhenNeverCommitted) {
         LayerWriter writer(folder, {});
         writer.add(grid, {"deposits", "Deposited rocks", ""});
         std::ofstream(writer.temporary_path("run.json")) << "{}";
-        for (const auto& name : names_in(folder)) EXPECT_EQ(name.front(), '.') << name << " is visible before commit";
+        EXPECT_TRUE(fs::is_empty(folder)) << "files visible before commit";
         throw std::runtime_error("the run failed");
       },
       std::runtime_error);
   EXPECT_TRUE(fs::is_empty(folder));
+  EXPECT_EQ(names_in(folder.parent_path()).count(folder.filename().string()), 1u);
+  for (const auto& name : names_in(folder.parent_path()))
+    EXPECT_EQ(name.find("." + folder.filename().string() + ".talus-"), std::string::npos) << name << " left behind";
 }
 
 TEST(LayerWriter, CommitsTheFilesOfTheSetAndDropsALayerThatFailed) {
@@ -286,12 +289,14 @@ TEST(LayerWriter, CommitsTheFilesOfTheSetAndDropsALayerThatFailed) {
     const std::string message = error.what();
     EXPECT_NE(message.find((folder / "pressure_max.tif").string()), std::string::npos) << message;
   }
-  // A folder in the way of the style's temporary file: the layer fails after its GeoTIFF was written.
-  fs::create_directory(folder / ".flow_depth_max.qml.part");
-  std::ofstream(folder / ".flow_depth_max.qml.part" / "blocker") << "x";
+  // A folder in the way of the style: the layer fails after its GeoTIFF was written.
+  const auto blocker = writer.staging_folder() / "flow_depth_max.qml";
+  fs::create_directory(blocker);
+  std::ofstream(blocker / "blocker") << "x";
   EXPECT_THROW(writer.add(sample_grid(50, 40, epsg_wkt(31287)), {"flow_depth_max", "Maximum flow depth", "m"}),
                std::runtime_error);
-  fs::remove_all(folder / ".flow_depth_max.qml.part");
+  EXPECT_FALSE(fs::exists(writer.staging_folder() / "flow_depth_max.tif"));
+  fs::remove_all(blocker);
   std::ofstream(writer.temporary_path("run.json")) << "{}";
   writer.commit();
   EXPECT_EQ(names_in(folder),

@@ -29,6 +29,9 @@ struct GridSpec {
   double col_of(double x) const { return (x - geotransform[0]) / geotransform[1] - 0.5; }
   double row_of(double y) const { return (y - geotransform[3]) / geotransform[5] - 0.5; }
   bool contains_cell(int col, int row) const { return col >= 0 && row >= 0 && col < width && row < height; }
+  // The cell holding the point (x, y) (the nearest node), false when the point lies off the
+  // grid or is not finite; no integer conversion can overflow (issue 18, item 2).
+  bool cell_at(double x, double y, int& col, int& row) const;
 
   // Same size, geotransform (to 1e-9 of a cell) and CRS: grids that can be combined cell by cell.
   bool same_grid(const GridSpec& other) const;

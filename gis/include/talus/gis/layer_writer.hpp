@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "talus/core/grid.hpp"
 #include "talus/gis/layer_overviews.hpp"
+#include "talus/gis/staged_folder.hpp"
 
 namespace talus::gis {
 
@@ -23,35 +25,39 @@ struct LayerDescription {
   std::string style_qml{};   // the layer's own QML style; empty: the one of gis/styles/<name>.qml
 };
 
-// Writes a set of layers into one folder as a unit: each layer goes to a temporary name and
-// all are renamed only by commit(), so a failed run leaves no partial layer behind. Beside each
-// <layer>.tif go <layer>.qml (its style) and <layer>.qmd (title and abstract for QGIS).
+// Writes a set of layers into one folder as a unit: every file goes into a staging folder
+// beside the output folder (staged_folder.hpp), which commit() swaps in whole, so a failed or
+// killed run leaves the old set as it was. Beside each <layer>.tif go <layer>.qml (its style) and
+// <layer>.qmd (title and abstract for QGIS).
 //
 // Metadata keys the writer also reads: TALUS_PROCESS ("rock fall", "mud flow") ends each
 // layer's title, so the two processes' layers of one quantity have distinct titles, and
 // TALUS_SCENARIO goes into each abstract.
 class LayerWriter {
  public:
-  // metadata: written into every layer (TALUS_VERSION is added); the folder is created.
-  LayerWriter(std::filesystem::path out_dir, std::map<std::string, std::string> metadata);
-  ~LayerWriter();  // removes the temporary files of a set that was never committed
+  // metadata: written into every layer (TALUS_VERSION is added). The output folder is checked
+  // and the staging folder created here (InputError naming the folder when that fails), so a
+  // command constructs its writer before any work.
+  LayerWriter(const std::filesystem::path& out_dir, std::map<std::string, std::string> metadata);
   LayerWriter(const LayerWriter&) = delete;
   LayerWriter& operator=(const LayerWriter&) = delete;
 
   // Writes values (nodata where invalid per the grid's spec) as a COG + its QML style and QMD.
   void add(const Grid<float>& values, const LayerDescription& layer);
-  // Writes a non-raster file of the set (run.json, a GeoPackage) from its temporary path.
+  // Where a non-raster file of the set (run.json, a GeoPackage) is written before the commit;
+  // each name once.
   std::filesystem::path temporary_path(const std::string& file_name);
-  // Renames every temporary file to its final name.
+  // Puts the staged set in the output folder's place.
   void commit();
-  const std::filesystem::path& folder() const { return out_dir_; }
+  const std::filesystem::path& folder() const { return staged_.out(); }
+  // The folder the set is written into until commit().
+  const std::filesystem::path& staging_folder() const { return staged_.staging(); }
 
  private:
-  std::filesystem::path out_dir_;
+  StagedFolder staged_;
   std::map<std::string, std::string> metadata_;
-  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> pending_;  // temp -> final
-  std::string written_at_;  // UTC date and time of the set, for the layers' metadata
-  bool committed_ = false;
+  std::set<std::string> names_;  // the files of the set
+  std::string written_at_;       // UTC date and time of the set, for the layers' metadata
 };
 
 // The QML style embedded from gis/styles/<layer>.qml, if there is one.

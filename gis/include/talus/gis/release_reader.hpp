@@ -18,6 +18,11 @@ namespace talus::gis {
 // Where a release's depth (m) comes from (issue 17, item 7; docs/inputs.md, "Release depth"):
 // the vector features' attribute `field`, the raster's values, or, with `uniform`, that depth
 // on every release cell and feature whatever the file holds.
+// The deepest mud-flow release (m) Talus takes: above the thickest debris-flow and shallow
+// landslide releases; a deeper one is a unit error (centimetres, say) or a fill value, and a
+// depth that is not a number is refused too (docs/inputs.md, "Plausible terrain").
+inline constexpr double kMaxReleaseDepth = 100.0;
+
 struct ReleaseDepthSource {
   std::string field = "depth";
   std::optional<double> uniform;  // m, > 0
