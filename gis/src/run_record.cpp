@@ -6,6 +6,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -73,6 +74,28 @@ void describe_file(const std::filesystem::path& path, ordered_json& entry) {
     entry["features"] = layer->GetFeatureCount();
     entry["crs"] = crs_display_name(wkt_of(layer->GetSpatialRef()));
   }
+}
+
+// JSON text indented by two spaces per level, as dump(2) writes it, except that an array of
+// numbers stays on one line (run.json's runs per source: one line for thousands of sources).
+// Invalid UTF-8 (a path in a legacy encoding) becomes U+FFFD rather than failing the run.
+void write_json(std::string& text, const ordered_json& value, int depth) {
+  const auto scalar = [](const ordered_json& v) { return v.dump(-1, ' ', false, ordered_json::error_handler_t::replace); };
+  const bool numbers = value.is_array() && std::all_of(value.begin(), value.end(), [](const ordered_json& v) { return v.is_number(); });
+  if (!value.is_structured() || value.empty() || numbers) {
+    text += scalar(value);
+    return;
+  }
+  const std::string inner(2 * (depth + 1), ' ');
+  text += value.is_object() ? "{\n" : "[\n";
+  bool first = true;
+  for (auto it = value.begin(); it != value.end(); ++it) {
+    text += (first ? "" : ",\n") + inner;
+    first = false;
+    if (value.is_object()) text += scalar(ordered_json(it.key())) + ": ";
+    write_json(text, *it, depth + 1);
+  }
+  text += "\n" + std::string(2 * depth, ' ') + (value.is_object() ? "}" : "]");
 }
 
 }  // namespace
@@ -154,8 +177,9 @@ ordered_json RunRecord::to_json() const {
 }
 
 void RunRecord::write(const std::filesystem::path& path) const {
-  // Invalid UTF-8 (a path in a legacy encoding) becomes U+FFFD rather than failing the run.
-  const std::string text = to_json().dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+  std::string text;
+  write_json(text, to_json(), 0);
+  text += "\n";
   std::ofstream out(path, std::ios::binary);
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
   out.close();

@@ -10,10 +10,26 @@ namespace talus::cli {
 namespace {
 
 nlohmann::json value_of(const ParameterTable::Target& target) {
-  return std::visit([](auto* value) { return nlohmann::json(*value); }, target);
+  return std::visit(
+      [](auto* value) {
+        using T = std::remove_pointer_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, CountOrAuto>) {
+          return value->automatic ? nlohmann::json("auto") : nlohmann::json(value->count);
+        } else {
+          return nlohmann::json(*value);
+        }
+      },
+      target);
 }
 
 }  // namespace
+
+CountOrAuto parse_count_or_auto(const std::string& where, const std::string& text) {
+  if (text == "auto") return {true, 0};
+  const bool digits = !text.empty() && text.size() <= 18 && text.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits) throw InputError(where + " " + text + ": expected a whole number or auto");
+  return {false, std::stoull(text)};
+}
 
 void ParameterTable::add(std::string section, std::string name, std::string unit, std::string description, Target target) {
   entries_.push_back({std::move(section), std::move(name), std::move(unit), std::move(description), target});
@@ -76,6 +92,16 @@ void ParameterTable::apply(const toml::table& sections, Origin origin, const std
               const auto number = node.value<double>();
               if (!number) throw InputError(source + ": " + where + " must be a number");
               if (!keep) *value = *number;
+            } else if constexpr (std::is_same_v<T, CountOrAuto>) {
+              // A TOML integer, or a string as the command line takes it ("auto", "100").
+              const auto integer = node.value<std::int64_t>();
+              const auto text = node.value<std::string>();
+              if (integer ? *integer < 0 : !text) {
+                throw InputError(source + ": " + where + " must be a whole number or \"auto\"");
+              }
+              const CountOrAuto parsed = integer ? CountOrAuto{false, static_cast<std::uint64_t>(*integer)}
+                                                 : parse_count_or_auto(source + ": " + where, *text);
+              if (!keep) *value = parsed;
             } else if constexpr (std::is_same_v<T, bool>) {
               const auto flag = node.value<bool>();
               if (!flag) throw InputError(source + ": " + where + " must be true or false");

@@ -14,9 +14,19 @@
 
 namespace talus::cli {
 
+// A count the program may choose itself: "auto" or a whole number (`[run] runs`, --runs).
+struct CountOrAuto {
+  bool automatic = false;
+  std::uint64_t count = 0;
+};
+
+// "auto" or the digits of a whole number; anything else is InputError naming `where` (an option
+// or a scenario key) and the text.
+CountOrAuto parse_count_or_auto(const std::string& where, const std::string& text);
+
 class ParameterTable {
  public:
-  using Target = std::variant<double*, int*, std::uint64_t*, std::string*, bool*>;
+  using Target = std::variant<double*, int*, std::uint64_t*, std::string*, bool*, CountOrAuto*>;
   // Where a value came from, lowest first. A source sets only the values that came from a lower
   // one, so a material preset < the scenario file < a command-line flag, whatever the order in
   // which they are applied.

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "envelope_convergence_report.hpp"
 #include "intensity_layer.hpp"
 #include "number_list.hpp"
 #include "parameter_table.hpp"
@@ -35,6 +36,8 @@ struct RockfallOptions {
   std::string mode = "fast";
   std::string block_shape = "sphere";
   std::string block_size = "1";
+  CountOrAuto runs{true, 0};   // into settings.runs_per_source and settings.auto_runs
+  std::string runs_flag;       // --runs as given
   std::string project = "on";  // --project on|off, [outputs] project
   std::string intensity = kDefaultIntensity;  // --intensity, [outputs] intensity
   RockfallSettings settings;
@@ -67,7 +70,21 @@ Eigen::Vector3d parse_size(const std::string& text) {
 ParameterTable parameter_table(RockfallOptions& o) {
   ParameterTable table;
   table.add("run", "mode", "", "trajectory model: fast (impulse bounces) or full (piston carpet)", &o.mode);
-  table.add("run", "runs", "", "trajectories per release cell or point", &o.settings.runs_per_source);
+  table.add("run", "runs", "runs",
+            "trajectories per release cell or point (1 or more), or \"auto\": per source, doubled from min_runs until "
+            "its maps change by less than convergence_tolerance (docs/hazard-statistics.md, Convergence)",
+            &o.runs);
+  auto& c = o.settings.convergence;
+  table.add("run", "convergence_tolerance", "-",
+            "converged: the reach probability and the energy per run change by less than this (L1, relative) over the "
+            "last doubling of the runs (0-1, exclusive)",
+            &c.tolerance);
+  table.add("run", "min_runs", "runs", "runs = \"auto\": runs per source before the first convergence test (2 or more)",
+            &c.min_runs);
+  table.add("run", "max_runs", "runs",
+            "runs = \"auto\": most runs per source (min_runs or more); a source stops at the last doubling of min_runs "
+            "not above it",
+            &c.max_runs);
   table.add("run", "seed", "", "seed of the counter-based random numbers", &o.settings.seed);
   table.add("run", "saved_trajectories", "", "at most this many lines in trajectories.gpkg", &o.settings.saved_trajectories);
   table.add("outputs", "project", "",
@@ -141,7 +158,13 @@ ParameterTable parameter_table(RockfallOptions& o) {
 
 std::string scenario_text(const RockfallOptions& o) {
   std::ostringstream text;
-  text << "rockfall " << o.mode << ", " << o.settings.runs_per_source << " runs per source, seed " << o.settings.seed
+  text << "rockfall " << o.mode << ", ";
+  if (o.settings.auto_runs) {
+    text << "runs per source until converged within " << o.settings.convergence.tolerance;
+  } else {
+    text << o.settings.runs_per_source << " runs per source";
+  }
+  text << ", seed " << o.settings.seed
        << ", " << o.block_shape << " " << o.block_size << " m, " << o.settings.rock.density << " kg/m3";
   return text.str();
 }
@@ -214,6 +237,33 @@ RockfallResult run_trajectories(const GroundModel& ground, const std::vector<Rel
   }
 }
 
+// --runs (or [run] runs) into the settings, and the convergence parameters checked: a tolerance
+// in (0, 1); with auto, min_runs >= 2 and max_runs >= min_runs; --only-run below the runs.
+void validate_runs(RockfallOptions& o) {
+  if (!o.runs_flag.empty()) o.runs = parse_count_or_auto("--runs", o.runs_flag);
+  RockfallSettings& s = o.settings;
+  s.auto_runs = o.runs.automatic;
+  if (!s.auto_runs) s.runs_per_source = o.runs.count;
+  if (!s.auto_runs && s.runs_per_source == 0) throw InputError("--runs 0: at least one run per source");
+  const ConvergenceParameters& c = s.convergence;
+  if (!(c.tolerance > 0.0 && c.tolerance < 1.0)) {
+    throw InputError("[run] convergence_tolerance " + std::to_string(c.tolerance) + ": expected a fraction between 0 and 1");
+  }
+  if (s.auto_runs && c.min_runs < 2) {
+    throw InputError("[run] min_runs " + std::to_string(c.min_runs) +
+                     ": --runs auto needs at least 2 runs per source before its first test");
+  }
+  if (s.auto_runs && c.max_runs < c.min_runs) {
+    throw InputError("[run] max_runs " + std::to_string(c.max_runs) + ": below [run] min_runs " +
+                     std::to_string(c.min_runs) + ", the first batch of --runs auto");
+  }
+  const std::uint64_t runs = s.auto_runs ? auto_run_limit(c) : s.runs_per_source;
+  if (s.only_run && *s.only_run >= runs) {
+    throw InputError("--only-run " + std::to_string(*s.only_run) + ": runs are numbered 0 to " +
+                     (s.auto_runs ? "the auto limit - 1 (" : "--runs - 1 (") + std::to_string(runs - 1) + ")");
+  }
+}
+
 int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   // The scenario file sets every parameter it names, except those given as flags (pinned).
   if (!o.scenario.empty()) table.apply_scenario(o.scenario, {});
@@ -226,15 +276,10 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   if (!(o.settings.rock.density >= kMinRockDensity && o.settings.rock.density <= kMaxRockDensity)) {
     throw InputError("--density " + std::to_string(o.settings.rock.density) + ": expected 500-6000 kg/m3");
   }
-  if (o.settings.runs_per_source == 0) throw InputError("--runs 0: at least one run per source");
+  validate_runs(o);
   const double reference = o.settings.stochastic.noise_reference_size;
   if (!(reference > 0.0 && reference <= 100.0)) {
     throw InputError("[stochastic] noise_reference_size " + std::to_string(reference) + ": expected 0-100 m");
-  }
-  const std::optional<std::uint64_t>& only_run = o.settings.only_run;
-  if (only_run && *only_run >= o.settings.runs_per_source) {
-    throw InputError("--only-run " + std::to_string(*only_run) + ": runs are numbered 0 to --runs - 1 (" +
-                     std::to_string(o.settings.runs_per_source - 1) + ")");
   }
   const int parts = o.full.fracture_parts;
   if (parts != 1 && parts != 2 && parts != 4 && parts != 8) {
@@ -268,8 +313,14 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   const double read_seconds = seconds_since(start);
   for (const auto& note : scene.notes) std::printf("note: %s\n", note.c_str());
   for (const auto& problem : scene.problems) std::printf("problem: %s\n", problem.c_str());
-  std::printf("Simulating %zu sources x %llu runs (%s mode) ...\n", sources.size(),
-              static_cast<unsigned long long>(o.settings.runs_per_source), o.mode.c_str());
+  if (o.settings.auto_runs) {
+    std::printf("Simulating %zu sources x %llu to %llu runs until converged (--runs auto, %s mode) ...\n",
+                sources.size(), static_cast<unsigned long long>(o.settings.convergence.min_runs),
+                static_cast<unsigned long long>(auto_run_limit(o.settings.convergence)), o.mode.c_str());
+  } else {
+    std::printf("Simulating %zu sources x %llu runs (%s mode) ...\n", sources.size(),
+                static_cast<unsigned long long>(o.settings.runs_per_source), o.mode.c_str());
+  }
   std::fflush(stdout);
 
   const auto simulate_start = std::chrono::steady_clock::now();
@@ -304,12 +355,16 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
                         {"fragments", result.fragments},
                         {"saved_trajectories", result.lines.size()}});
   record.set("runout", runout_summary(result.runouts));
+  record.set("runs", runs_record(result, o.settings));
+  record.set("convergence", convergence_record(result, o.settings));
   if (intensity) record.set("intensity", intensity_entry);
   const std::vector<std::string> trajectory_problems =
       o.mode == "fast" ? truncated_trajectory_problems(result.stop_counts, "[fast_bounce] max_time", o.fast.max_time)
                        : truncated_trajectory_problems(result.stop_counts, "[full] max_time", o.full.max_time);
   std::vector<std::string> problems = scene.problems;
   problems.insert(problems.end(), trajectory_problems.begin(), trajectory_problems.end());
+  const std::vector<std::string> unconverged = convergence_problems(result, o.settings);
+  problems.insert(problems.end(), unconverged.begin(), unconverged.end());
   record.set("notes", scene.notes);
   record.set("problems", problems);
   record.add_timing("read_inputs", read_seconds);
@@ -329,7 +384,9 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   }
   if (result.fragments > 0) std::printf("; fragments from fractures %llu", static_cast<unsigned long long>(result.fragments));
   std::printf("\n");
+  for (const auto& line : convergence_lines(result, o.settings)) std::printf("%s\n", line.c_str());
   for (const auto& problem : trajectory_problems) std::printf("problem: %s\n", problem.c_str());
+  for (const auto& problem : unconverged) std::printf("problem: %s\n", problem.c_str());
   if (intensity) std::printf("%s\n", intensity_summary(intensity_entry).c_str());
   std::printf("Layers written to %s (open the .tif files in QGIS: each has its style beside it)\n", o.out.c_str());
   if (!project_line.empty()) std::printf("%s\n", project_line.c_str());
@@ -351,7 +408,8 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
   cmd->add_option("--materials", o->inputs.materials, "Materials table (TOML); default: built-in");
   cmd->add_option("--scenario", o->scenario, "Scenario TOML: [run], [rock], [stochastic], [fast_bounce], [full] (see talus params)");
   auto* mode = cmd->add_option("--mode", o->mode, "Trajectory model: fast or full")->default_val("fast");
-  auto* runs = cmd->add_option("--runs", o->settings.runs_per_source, "Trajectories per release cell or point")->default_val(10);
+  auto* runs = cmd->add_option("--runs", o->runs_flag,
+                               "Trajectories per release cell or point, or auto: until the envelope converges (default)");
   auto* shape = cmd->add_option("--block-shape", o->block_shape, "sphere, ellipsoid or box")->default_val("sphere");
   auto* size = cmd->add_option("--block-size", o->block_size, "Diameter D, or axes A,B,C (m)")->default_val("1");
   auto* density = cmd->add_option("--density", o->settings.rock.density, "Rock density (kg/m3)")->default_val(2700.0);

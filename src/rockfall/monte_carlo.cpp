@@ -7,8 +7,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <exception>
+#include <functional>
+#include <mutex>
 #include <numbers>
+#include <queue>
+#include <utility>
 
 #include "talus/core/counter_random.hpp"
 #include "talus/ground/perlin_noise.hpp"
@@ -143,6 +148,221 @@ RunDraws draw_run(const GroundModel& ground, const ReleaseSource& source, const 
   return draws;
 }
 
+// Runs of one source that a thread takes at once.
+constexpr std::uint64_t kChunkRuns = 8;
+
+// (source, run), ordered as the runs of a whole run are.
+using RunKey = std::pair<std::uint64_t, std::uint64_t>;
+
+// The batches of a run_rockfall call (envelope_convergence.hpp): where each source's first batch
+// ends and, once a batch is done, where the next one ends. A fixed run of N runs is two batches,
+// [0, N/2) and [N/2, N), so that its envelope is tested at N/2 against N; auto starts likewise
+// with [0, min_runs/2) and [min_runs/2, min_runs), then doubles a source's runs until its
+// envelope has converged or the next doubling would pass the run limit; only_run is one batch.
+class BatchRule {
+ public:
+  explicit BatchRule(const RockfallSettings& settings)
+      : settings_(settings),
+        limit_(settings.auto_runs ? auto_run_limit(settings.convergence) : settings.runs_per_source) {}
+
+  bool tested() const { return !settings_.only_run; }  // the envelope is tested for convergence
+  std::uint64_t limit() const { return limit_; }
+  std::uint64_t first_run() const { return settings_.only_run.value_or(0); }
+  std::uint64_t first_end() const {
+    if (settings_.only_run) return *settings_.only_run + 1;
+    const std::uint64_t full = settings_.auto_runs ? settings_.convergence.min_runs : settings_.runs_per_source;
+    return full / 2 > 0 ? full / 2 : full;
+  }
+  // 0: the source is finished after `done` runs, whose last batch changed its envelope by `change`.
+  std::uint64_t next_end(std::uint64_t done, const EnvelopeChange& change) const {
+    if (settings_.only_run) return 0;
+    if (!settings_.auto_runs) return done < settings_.runs_per_source ? settings_.runs_per_source : 0;
+    if (done < settings_.convergence.min_runs) return settings_.convergence.min_runs;
+    if (done >= limit_ || envelope_converged(change, settings_.convergence.tolerance)) return 0;
+    return 2 * done;
+  }
+  // Runs a source is planned to take at most (progress), and those the saved lines sample from:
+  // every run of a fixed run, the first min_runs of an auto run.
+  std::uint64_t planned_runs() const { return settings_.only_run ? 1 : limit_; }
+  std::uint64_t sampled_runs() const {
+    if (settings_.only_run) return 1;
+    return settings_.auto_runs ? settings_.convergence.min_runs : settings_.runs_per_source;
+  }
+  // Whether run `run` of the source at `position` among those simulated has its line saved.
+  bool saved(std::uint64_t position, std::uint64_t run, std::uint64_t stride) const {
+    if (settings_.only_run) return position % stride == 0;
+    return run < sampled_runs() && (position * sampled_runs() + run) % stride == 0;
+  }
+
+ private:
+  const RockfallSettings& settings_;
+  std::uint64_t limit_;
+};
+
+// A share of the runs of one source's open batch, for one thread.
+struct Chunk {
+  std::size_t position = 0;  // the source's place among those simulated
+  std::uint64_t begin = 0, end = 0;
+  bool operator>(const Chunk& other) const {
+    return position != other.position ? position > other.position : begin > other.begin;
+  }
+};
+
+// The sources of a run_rockfall call, their batches and envelopes, shared by the threads: a
+// queue of chunks, lowest source first (so that sources finish in order and few hold an
+// envelope at a time). A source's batch is closed by the thread that finishes its last chunk:
+// that source's envelope alone decides its next batch, so the decisions do not depend on the
+// threads. Envelopes are integer sums compared in cell order, so they do not either.
+class SourceBatches {
+ public:
+  SourceBatches(const RockfallSettings& settings, std::size_t source_count, std::size_t cells)
+      : settings_(settings), rule_(settings), half_(rule_.tested() ? cells : 0), all_(rule_.tested() ? cells : 0),
+        runs_by_source_(source_count, 0) {
+    for (std::uint64_t source = 0; source < source_count; ++source) {
+      if (settings.only_source && *settings.only_source != source) continue;
+      SourceState& state = states_.emplace_back();
+      state.source = source;
+      state.done = rule_.first_run();
+    }
+    for (std::size_t position = 0; position < states_.size(); ++position) open_batch(position, rule_.first_end());
+  }
+
+  const BatchRule& rule() const { return rule_; }
+  std::size_t size() const { return states_.size(); }
+  std::uint64_t source_at(std::size_t position) const { return states_[position].source; }
+
+  // The next chunk to run; false once every batch is done or the run was cancelled.
+  bool take(Chunk& chunk) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait(lock, [&] { return cancelled_ || !queue_.empty() || in_flight_ == 0; });
+    if (cancelled_ || queue_.empty()) return false;
+    chunk = queue_.top();
+    queue_.pop();
+    ++in_flight_;
+    return true;
+  }
+
+  // A chunk taken by take() is over: `completed` is false when it stopped early (the run is
+  // cancelled); `crossed` is the cells its trajectories crossed (envelope_of merges them).
+  void finish(const Chunk& chunk, bool completed, std::vector<EnvelopeCell>& crossed) {
+    SourceState& state = states_[chunk.position];
+    const Envelope envelope = completed && rule_.tested() ? envelope_of(std::move(crossed)) : Envelope{};
+    crossed.clear();
+    std::unique_lock<std::mutex> lock(mutex_);
+    const bool closing = completed && !cancelled_ && merge_chunk(state, chunk, envelope);
+    if (closing) {
+      // This thread alone touches the source until its next batch is queued.
+      lock.unlock();
+      close_batch(state);
+      lock.lock();
+      const std::uint64_t next = rule_.next_end(state.done, state.change);
+      if (next != 0) {
+        open_batch(chunk.position, next);
+      } else {
+        finish_source(state);
+      }
+    }
+    --in_flight_;
+    wake_.notify_all();
+  }
+
+  void cancel() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    cancelled_ = true;
+    wake_.notify_all();
+  }
+
+  // Sources finished plus, for each unfinished one, the share of its planned runs done: 0 .. 1.
+  double fraction_done() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return states_.empty() ? 1.0 : credit_ / static_cast<double>(states_.size());
+  }
+
+  std::vector<std::uint64_t> runs_by_source() const { return runs_by_source_; }
+
+  std::optional<ConvergenceReport> report() const {
+    if (!rule_.tested()) return std::nullopt;
+    ConvergenceReport report;
+    report.change = envelope_change(half_.field(), all_.field());
+    report.converged = envelope_converged(report.change, settings_.convergence.tolerance);
+    report.sources = states_.size();
+    report.sources_converged = sources_converged_;
+    report.sources_at_limit = sources_at_limit_;
+    report.run_limit = settings_.auto_runs ? rule_.limit() : 0;
+    report.runs_suggested = suggested_runs(rule_.limit(), report.change, settings_.convergence.tolerance);
+    return report;
+  }
+
+ private:
+  struct SourceState {
+    std::uint64_t source = 0;
+    std::uint64_t done = 0;       // runs of the closed batches (only_run: that run's index)
+    std::uint64_t batch_end = 0;  // the open batch's runs end here
+    std::uint64_t pending = 0;    // runs of the open batch not finished
+    Envelope envelope;            // after the closed batches
+    Envelope previous;            // before the last closed batch
+    std::uint64_t previous_runs = 0;  // of `previous`
+    Envelope batch;               // the open batch's finished chunks
+    EnvelopeChange change;        // of the last closed batch
+  };
+
+  // Queues the chunks of a source's batch from its runs done to `end`. Under the lock.
+  void open_batch(std::size_t position, std::uint64_t end) {
+    SourceState& state = states_[position];
+    state.batch_end = end;
+    state.pending = end - state.done;
+    for (std::uint64_t begin = state.done; begin < end; begin += kChunkRuns) {
+      queue_.push({position, begin, std::min(end, begin + kChunkRuns)});
+    }
+  }
+
+  // Adds a finished chunk to its batch; true when it was the batch's last. Under the lock.
+  bool merge_chunk(SourceState& state, const Chunk& chunk, const Envelope& envelope) {
+    if (!envelope.empty()) state.batch = envelope_sum(state.batch, envelope);
+    state.pending -= chunk.end - chunk.begin;
+    credit_ += static_cast<double>(chunk.end - chunk.begin) / static_cast<double>(rule_.planned_runs());
+    return state.pending == 0;
+  }
+
+  // The batch joins the envelope; its change is measured. The source's own data only.
+  static void close_batch(SourceState& state) {
+    Envelope after = envelope_sum(state.envelope, state.batch);
+    state.change = envelope_change(per_run(state.envelope, state.done), per_run(after, state.batch_end));
+    state.previous_runs = state.done;
+    state.previous = std::move(state.envelope);
+    state.envelope = std::move(after);
+    state.batch = Envelope{};
+    state.done = state.batch_end;
+  }
+
+  // A source without further batches: its envelopes join the whole run's. Under the lock.
+  void finish_source(SourceState& state) {
+    if (rule_.tested()) {
+      half_.add(per_run(state.previous, state.previous_runs));
+      all_.add(per_run(state.envelope, state.done));
+      const bool converged = envelope_converged(state.change, settings_.convergence.tolerance);
+      sources_converged_ += converged ? 1 : 0;
+      sources_at_limit_ += settings_.auto_runs && !converged ? 1 : 0;
+    }
+    runs_by_source_[state.source] = settings_.only_run ? 1 : state.done;
+    credit_ += 1.0 - static_cast<double>(runs_by_source_[state.source]) / static_cast<double>(rule_.planned_runs());
+    state.envelope = state.previous = Envelope{};
+  }
+
+  const RockfallSettings& settings_;
+  BatchRule rule_;
+  std::vector<SourceState> states_;
+  EnvelopeGrid half_, all_;  // the whole run's maps before and after each source's last doubling
+  std::vector<std::uint64_t> runs_by_source_;
+  std::uint64_t sources_converged_ = 0, sources_at_limit_ = 0;
+  std::priority_queue<Chunk, std::vector<Chunk>, std::greater<>> queue_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::uint64_t in_flight_ = 0;  // chunks taken and not finished
+  bool cancelled_ = false;
+  double credit_ = 0;
+};
+
 }  // namespace
 
 std::vector<ReleaseSource> release_sources(const ReleaseSet& release) {
@@ -160,44 +380,30 @@ std::vector<ReleaseSource> release_sources(const ReleaseSet& release) {
   return sources;
 }
 
-// The (source, run) pairs a run_rockfall call simulates, as flat indices source x runs + run, in
-// order: all of them, or those RockfallSettings::only_source and only_run select.
-std::vector<std::uint64_t> selected_runs(std::uint64_t sources, const RockfallSettings& settings) {
-  const std::uint64_t runs = settings.runs_per_source;
-  std::vector<std::uint64_t> selected;
-  for (std::uint64_t source = 0; source < sources; ++source) {
-    if (settings.only_source && *settings.only_source != source) continue;
-    for (std::uint64_t run = 0; run < runs; ++run) {
-      if (!settings.only_run || *settings.only_run == run) selected.push_back(source * runs + run);
-    }
-  }
-  return selected;
-}
-
 RockfallResult run_rockfall(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
                             const TrajectoryModel& model, const RockfallSettings& settings, Progress* progress) {
-  const std::uint64_t runs = settings.runs_per_source;
-  const std::vector<std::uint64_t> selected = selected_runs(sources.size(), settings);
-  const std::uint64_t total = selected.size();
+  SourceBatches batches(settings, sources.size(), ground.elevation_grid().size());
+  const BatchRule& rule = batches.rule();
+  const std::uint64_t sampled = batches.size() * rule.sampled_runs();
   const std::uint64_t save_stride =
-      settings.saved_trajectories == 0 ? 0 : std::max<std::uint64_t>(1, (total + settings.saved_trajectories - 1) / settings.saved_trajectories);
+      settings.saved_trajectories == 0 ? 0 : std::max<std::uint64_t>(1, (sampled + settings.saved_trajectories - 1) / settings.saved_trajectories);
   const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
 
-  RockfallResult result{RockfallStatistics(ground.elevation_grid()), {}, std::vector<std::uint64_t>(4, 0),
-                        std::vector<double>(total, 0.0), total, threads};
-  std::atomic<std::uint64_t> done{0};
+  RockfallResult result{RockfallStatistics(ground.elevation_grid()), {}, std::vector<std::uint64_t>(4, 0), {}, 0, threads, 0, {}, std::nullopt};
+  std::vector<std::pair<RunKey, double>> runouts;
   std::atomic<bool> cancelled{false};
   // A run that throws (NumericalFailure: exit code 3) ends them all; the earliest such run's
   // failure is thrown, with its source and run, once every thread has left the loop.
   std::exception_ptr failure;
-  std::uint64_t failed_run = 0;
-  const auto keep_failure = [&](std::exception_ptr thrown, std::uint64_t k) {
+  RunKey failed_run{};
+  const auto keep_failure = [&](std::exception_ptr thrown, RunKey key) {
 #pragma omp critical(talus_rockfall_failure)
-    if (failure == nullptr || k < failed_run) {
+    if (failure == nullptr || key < failed_run) {
       failure = std::move(thrown);
-      failed_run = k;
+      failed_run = key;
     }
     cancelled.store(true);
+    batches.cancel();
   };
 
 #pragma omp parallel num_threads(threads)
@@ -207,43 +413,52 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
     RunObserver observer(recorder);
     std::vector<TrajectoryLine> lines;
     std::vector<std::uint64_t> stop_counts(4, 0);
+    std::vector<std::pair<RunKey, double>> thread_runouts;
+    std::vector<EnvelopeCell> crossed;
     std::uint64_t fragments = 0;
     const bool reporter = omp_get_thread_num() == 0;
 
-#pragma omp for schedule(dynamic, 8)
-    for (std::uint64_t n = 0; n < total; ++n) {
-      if (cancelled.load(std::memory_order_relaxed)) continue;
-      const std::uint64_t k = selected[n];
-      const std::uint64_t source_index = k / runs, run = k % runs;
-      RunDraws draws = draw_run(ground, sources[source_index], settings, source_index, run);
-      const PerlinNoise noise(draws.noise);
-      const PerturbedGround perturbed(ground, &noise, draws.variation);
-      draws.start.position.z() = perturbed.height(draws.start.position.x(), draws.start.position.y()) +
-                                 draws.rock.half_height(draws.start.orientation) +
-                                 sources[source_index].conditions.release_height.value_or(settings.stochastic.release_height);
-      TrajectoryLine* line = nullptr;
-      if (save_stride != 0 && n % save_stride == 0) {
-        lines.push_back({source_index, run, sources[source_index].feature_id, StopReason::at_rest, 0, 0, {}});
-        line = &lines.back();
-      }
-      observer.start(line);
+    Chunk chunk;
+    while (batches.take(chunk)) {
+      const std::uint64_t source_index = batches.source_at(chunk.position);
+      const ReleaseSource& source = sources[source_index];
+      std::uint64_t run = chunk.begin;
       try {
-        model.run(perturbed, draws.rock, draws.start, observer);
-      } catch (const NumericalFailure& e) {
-        keep_failure(std::make_exception_ptr(TrajectoryFailure(e.what(), source_index, run)), k);
-        continue;
+        for (; run < chunk.end && !cancelled.load(std::memory_order_relaxed); ++run) {
+          RunDraws draws = draw_run(ground, source, settings, source_index, run);
+          const PerlinNoise noise(draws.noise);
+          const PerturbedGround perturbed(ground, &noise, draws.variation);
+          draws.start.position.z() = perturbed.height(draws.start.position.x(), draws.start.position.y()) +
+                                     draws.rock.half_height(draws.start.orientation) +
+                                     source.conditions.release_height.value_or(settings.stochastic.release_height);
+          TrajectoryLine* line = nullptr;
+          if (save_stride != 0 && rule.saved(chunk.position, run, save_stride)) {
+            lines.push_back({source_index, run, source.feature_id, StopReason::at_rest, 0, 0, {}});
+            line = &lines.back();
+          }
+          observer.start(line);
+          try {
+            model.run(perturbed, draws.rock, draws.start, observer);
+          } catch (const NumericalFailure& e) {
+            throw TrajectoryFailure(e.what(), source_index, run);
+          }
+          if (rule.tested()) recorder.append_envelope(crossed);
+          recorder.commit(source_index);
+          thread_runouts.push_back({{source_index, run}, observer.path_length()});
+          for (const StopReason reason : observer.stops()) ++stop_counts[static_cast<std::size_t>(reason)];
+          fragments += observer.fragments();
+        }
+        batches.finish(chunk, run == chunk.end, crossed);
       } catch (...) {
-        keep_failure(std::current_exception(), k);
+        keep_failure(std::current_exception(), {source_index, run});
         continue;
       }
-      recorder.commit(source_index);
-      result.runouts[n] = observer.path_length();
-      for (const StopReason reason : observer.stops()) ++stop_counts[static_cast<std::size_t>(reason)];
-      fragments += observer.fragments();
-      const std::uint64_t finished = done.fetch_add(1, std::memory_order_relaxed) + 1;
       if (reporter && progress != nullptr) {
-        progress->report(static_cast<double>(finished) / static_cast<double>(total), "trajectories");
-        if (progress->cancelled()) cancelled.store(true);
+        progress->report(batches.fraction_done(), "trajectories");
+        if (progress->cancelled()) {
+          cancelled.store(true);
+          batches.cancel();
+        }
       }
     }
 #pragma omp critical(talus_rockfall_merge)
@@ -252,6 +467,7 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       for (std::size_t r = 0; r < stop_counts.size(); ++r) result.stop_counts[r] += stop_counts[r];
       result.fragments += fragments;
       for (auto& line : lines) result.lines.push_back(std::move(line));
+      runouts.insert(runouts.end(), thread_runouts.begin(), thread_runouts.end());
     }
   }
   if (failure != nullptr) std::rethrow_exception(failure);
@@ -259,6 +475,12 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
   std::sort(result.lines.begin(), result.lines.end(), [](const TrajectoryLine& a, const TrajectoryLine& b) {
     return a.source_id != b.source_id ? a.source_id < b.source_id : a.run_id < b.run_id;
   });
+  std::sort(runouts.begin(), runouts.end());
+  result.runouts.reserve(runouts.size());
+  for (const auto& [key, length] : runouts) result.runouts.push_back(length);
+  result.trajectories = runouts.size();
+  result.runs_by_source = batches.runs_by_source();
+  result.convergence = batches.report();
   if (progress != nullptr) progress->report(1.0, "trajectories");
   return result;
 }

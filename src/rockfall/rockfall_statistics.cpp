@@ -5,6 +5,7 @@
 #include "talus/rockfall/rockfall_statistics.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <stdexcept>
@@ -246,6 +247,13 @@ void RockfallStatistics::Recorder::on_stop(const TrajectorySample& last, StopRea
 void RockfallStatistics::Recorder::on_fragment(const TrajectorySample& start) {
   state_->has_previous = false;
   state_->sample(start);
+}
+
+void RockfallStatistics::Recorder::append_envelope(std::vector<EnvelopeCell>& cells) const {
+  const std::vector<std::uint8_t>& valid = statistics_.accumulators_->valid;
+  for (const Passage& p : state_->passages) {
+    if (p.crossed && valid[p.cell]) cells.push_back({p.cell, 1, static_cast<std::uint64_t>(std::llround(p.energy))});
+  }
 }
 
 void RockfallStatistics::Recorder::commit(std::uint64_t source) {

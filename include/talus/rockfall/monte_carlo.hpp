@@ -1,7 +1,9 @@
-// The stochastic simulation of paper 3.4: every release source runs N times, each run on its
-// own Perlin-perturbed ground with its own release point inside the source cell, rock size,
-// density and material parameters. Random numbers are counter-based from (seed, source, run),
-// and statistics merge exactly, so the layers are bit-identical for any thread count.
+// The stochastic simulation of paper 3.4: every release source runs N times (or, in auto mode, as
+// many times as its envelope needs to converge: envelope_convergence.hpp), each run on its own
+// Perlin-perturbed ground with its own release point inside the source cell, rock size, density
+// and material parameters. Random numbers are counter-based from (seed, source, run), so run k of
+// source s is the same trajectory however many runs the source gets, and statistics merge
+// exactly, so the layers are bit-identical for any thread count.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +15,7 @@
 #include "talus/core/progress.hpp"
 #include "talus/core/release.hpp"
 #include "talus/ground/ground_model.hpp"
+#include "talus/rockfall/envelope_convergence.hpp"
 #include "talus/rockfall/rock.hpp"
 #include "talus/rockfall/rockfall_statistics.hpp"
 #include "talus/rockfall/trajectory_line.hpp"
@@ -37,12 +40,16 @@ struct StochasticParameters {
 struct RockfallSettings {
   Rock rock;                            // the nominal rock
   StochasticParameters stochastic;
-  std::uint64_t runs_per_source = 10;   // trajectories per release cell or point
+  std::uint64_t runs_per_source = 10;   // trajectories per release cell or point (unless auto_runs)
+  bool auto_runs = false;               // runs per source chosen by the convergence of its envelope
+  ConvergenceParameters convergence;    // the convergence test (every run) and auto's batches
   std::uint64_t seed = 1;
   int threads = 0;                      // 0: OpenMP's default
   std::size_t saved_trajectories = 500; // at most this many lines kept for trajectories.gpkg
   // Only the runs of this source, and only this run of each source (0-based, as the lines'
   // source_id and run_id): one trajectory drawn exactly as in the whole run, to reproduce it.
+  // With auto_runs, only_source runs that source's batches as the whole run does; only_run
+  // simulates that one run of each source, without batches or a convergence test.
   std::optional<std::uint64_t> only_source, only_run;
 };
 
@@ -57,6 +64,20 @@ class TrajectoryFailure : public NumericalFailure {
   std::uint64_t source, run;
 };
 
+// How far a run's envelope has converged (envelope_convergence.hpp). The whole run's change
+// compares the union of every source's envelope before its last doubling of runs (n/2: the
+// first half of a fixed run's runs) with the union after it (n).
+struct ConvergenceReport {
+  EnvelopeChange change;
+  bool converged = false;               // change within the tolerance
+  std::uint64_t sources = 0;            // sources simulated
+  std::uint64_t sources_converged = 0;  // whose own envelope met the tolerance at its last doubling
+  std::uint64_t sources_at_limit = 0;   // auto: stopped at run_limit without converging
+  std::uint64_t run_limit = 0;          // auto: the most runs a source could get (auto_run_limit)
+  // suggested_runs of the whole run's change: runs per source (fixed), or a run limit (auto).
+  std::uint64_t runs_suggested = 0;
+};
+
 // A rock that breaks (paper fig. 4, full mode) reports several fragments (trajectory_observer.hpp):
 // its line and runout follow its first fragment only; stop_counts count every fragment's stop.
 struct RockfallResult {
@@ -67,6 +88,8 @@ struct RockfallResult {
   std::uint64_t trajectories = 0;
   int threads = 1;
   std::uint64_t fragments = 0;                  // extra rocks born from fractures, over all runs
+  std::vector<std::uint64_t> runs_by_source;    // runs simulated per source (0: not selected)
+  std::optional<ConvergenceReport> convergence; // none with only_run (one run per source)
 };
 
 // One release location: a cell centre (jittered inside its cell) or a point, with the
@@ -80,7 +103,9 @@ struct ReleaseSource {
 };
 std::vector<ReleaseSource> release_sources(const ReleaseSet& release);
 
-// Every run of every source (or those only_source and only_run select). A run that fails
+// Every run of every source (or those only_source and only_run select): in batches per source,
+// each batch's runs shared among the threads, the next batch of a source decided (auto_runs)
+// from that source's envelope once its batch is done. A run that fails
 // numerically ends them all: the earliest failing run in (source, run) order is thrown as a
 // TrajectoryFailure once every thread has stopped, and nothing is returned.
 RockfallResult run_rockfall(const GroundModel& ground, const std::vector<ReleaseSource>& sources,

@@ -9,8 +9,10 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "talus/core/grid.hpp"
+#include "talus/rockfall/envelope_convergence.hpp"
 #include "talus/rockfall/trajectory_observer.hpp"
 
 namespace talus {
@@ -64,6 +66,10 @@ class RockfallStatistics::Recorder final : public TrajectoryObserver {
   void on_energy_loss(double x, double y, double friction, double deformation) override;
   void on_stop(const TrajectorySample& last, StopReason reason) override;
   void on_fragment(const TrajectorySample& start) override;
+  // Appends the cells of the DEM's valid area that the trajectory crossed, each as one passage
+  // with its largest kinetic energy there (J), to `cells`: its envelope (envelope_convergence.hpp).
+  // Before commit.
+  void append_envelope(std::vector<EnvelopeCell>& cells) const;
   // Adds the trajectory, released from release source `source` (0-based, as run_rockfall numbers
   // them), and resets the recorder for the next one.
   void commit(std::uint64_t source);
