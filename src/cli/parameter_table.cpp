@@ -2,7 +2,10 @@
 #include "parameter_table.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
+#include <sstream>
 
 #include "talus/core/errors.hpp"
 
@@ -31,17 +34,53 @@ CountOrAuto parse_count_or_auto(const std::string& where, const std::string& tex
   return {false, std::stoull(text)};
 }
 
-void ParameterTable::add(std::string section, std::string name, std::string unit, std::string description, Target target) {
-  entries_.push_back({std::move(section), std::move(name), std::move(unit), std::move(description), target});
+void ParameterTable::add(std::string section, std::string name, std::string unit, std::string description, Target target,
+                         std::optional<Range> range) {
+  entries_.push_back({std::move(section), std::move(name), std::move(unit), std::move(description), target,
+                      Origin::built_in, range, ""});
 }
 
 void ParameterTable::retire(std::string section, std::string name, std::string instead) {
   retired_.push_back({std::move(section), std::move(name), std::move(instead)});
 }
 
-void ParameterTable::pin(const std::string& section, const std::string& name) {
+void ParameterTable::pin(const std::string& section, const std::string& name, const std::string& option) {
   for (auto& e : entries_) {
-    if (e.section == section && e.name == name) e.origin = Origin::command_line;
+    if (e.section != section || e.name != name) continue;
+    e.origin = Origin::command_line;
+    e.given_by = option.empty() ? "[" + section + "] " + name : option;
+  }
+}
+
+void ParameterTable::check_ranges() const {
+  for (const auto& e : entries_) {
+    if (!e.range) continue;
+    std::optional<double> value;
+    std::visit(
+        [&](auto* target) {
+          using T = std::remove_pointer_t<decltype(target)>;
+          if constexpr (std::is_same_v<T, CountOrAuto>) {
+            if (!target->automatic) value = static_cast<double>(target->count);
+          } else if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+            value = static_cast<double>(*target);
+          }
+        },
+        e.target);
+    if (!value) continue;
+    const Range& r = *e.range;
+    const bool inside = std::isfinite(*value) && (r.min_exclusive ? *value > r.min : *value >= r.min) &&
+                        (r.max_exclusive ? *value < r.max : *value <= r.max);
+    if (inside) continue;
+    std::ostringstream message;
+    message.precision(10);
+    message << (e.given_by.empty() ? "[" + e.section + "] " + e.name : e.given_by) << " " << *value << ": expected ";
+    if (r.min_exclusive || r.max_exclusive) {
+      message << (r.min_exclusive ? "> " : ">= ") << r.min << " and " << (r.max_exclusive ? "< " : "<= ") << r.max;
+    } else {
+      message << r.min << "-" << r.max;
+    }
+    if (!e.unit.empty() && e.unit != "-") message << " " << e.unit;
+    throw InputError(message.str());
   }
 }
 
@@ -60,8 +99,15 @@ nlohmann::json ParameterTable::values() const {
 nlohmann::json ParameterTable::describe() const {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& e : entries_) {
-    out.push_back({{"section", e.section}, {"name", e.name}, {"unit", e.unit}, {"description", e.description},
-                   {"default", value_of(e.target)}});
+    nlohmann::json entry = {{"section", e.section}, {"name", e.name},           {"unit", e.unit},
+                            {"description", e.description}, {"default", value_of(e.target)}};
+    if (e.range) {
+      entry["range"] = {{"min", e.range->min},
+                        {"max", e.range->max},
+                        {"min_exclusive", e.range->min_exclusive},
+                        {"max_exclusive", e.range->max_exclusive}};
+    }
+    out.push_back(std::move(entry));
   }
   return out;
 }
@@ -108,12 +154,18 @@ void ParameterTable::apply(const toml::table& sections, Origin origin, const std
               if (!keep) *value = *flag;
             } else {
               const auto integer = node.value<std::int64_t>();
-              if (!integer || *integer < 0) throw InputError(source + ": " + where + " must be a non-negative integer");
+              // No wrap-around: a value the target type cannot hold is refused, not cast.
+              if (!integer || *integer < 0 || static_cast<std::uint64_t>(*integer) > std::numeric_limits<T>::max())
+                throw InputError(source + ": " + where + " must be a non-negative integer of at most " +
+                                 std::to_string(std::numeric_limits<T>::max()));
               if (!keep) *value = static_cast<T>(*integer);
             }
           },
           entry->target);
-      if (!keep) entry->origin = origin;
+      if (!keep) {
+        entry->origin = origin;
+        entry->given_by = source + ": " + where;
+      }
     }
   }
 }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -31,13 +32,22 @@ class ParameterTable {
   // one, so a material preset < the scenario file < a command-line flag, whatever the order in
   // which they are applied.
   enum class Origin { built_in, material, scenario, command_line };
+  // The values a numeric parameter may take (issue 18, item 1), in its unit; a value must also be
+  // finite. Printed by `talus params` and checked by check_ranges().
+  struct Range {
+    double min = 0, max = 0;
+    bool min_exclusive = false, max_exclusive = false;
+  };
   struct Entry {
     std::string section, name, unit, description;
     Target target;
     Origin origin = Origin::built_in;
+    std::optional<Range> range;
+    std::string given_by;  // where the value came from, for messages: "--runs", "F.toml (scenario): [run] runs"
   };
 
-  void add(std::string section, std::string name, std::string unit, std::string description, Target target);
+  void add(std::string section, std::string name, std::string unit, std::string description, Target target,
+           std::optional<Range> range = std::nullopt);
   // A key that sources may no longer name: naming it is InputError with `instead`, the line that
   // says what to give now.
   void retire(std::string section, std::string name, std::string instead);
@@ -45,8 +55,12 @@ class ParameterTable {
   nlohmann::json values() const;
   // [{section, name, unit, description, default}], for `talus params`.
   nlohmann::json describe() const;
-  // Marks an entry as given on the command line, so that no other source overrides it.
-  void pin(const std::string& section, const std::string& name);
+  // Marks an entry as given on the command line by `option` (e.g. "--runs"), so that no other
+  // source overrides it.
+  void pin(const std::string& section, const std::string& name, const std::string& option = "");
+  // Every value with a range lies in it, or InputError names where it came from, the value and
+  // the range: `--runs 0: expected ...`, `F.toml (scenario): [fast_bounce] gravity -9.81: ...`.
+  void check_ranges() const;
   bool given_on_command_line(const std::string& section, const std::string& name) const;
   // Sets the values a TOML table gives by [section] key from `origin`, except those that came
   // from a higher one; unknown sections or keys, retired keys and values of the wrong type are

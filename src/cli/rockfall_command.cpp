@@ -68,25 +68,26 @@ Eigen::Vector3d parse_size(const std::string& text) {
 }
 
 ParameterTable parameter_table(RockfallOptions& o) {
+  using Range = ParameterTable::Range;  // the allowed values, in the unit (issue 18, item 1)
   ParameterTable table;
   table.add("run", "mode", "", "trajectory model: fast (impulse bounces) or full (piston carpet)", &o.mode);
   table.add("run", "runs", "runs",
             "trajectories per release cell or point (1 or more), or \"auto\": per source, doubled from min_runs until "
             "its maps change by less than convergence_tolerance (docs/hazard-statistics.md, Convergence)",
-            &o.runs);
+            &o.runs, Range{1, 1e+09, false, false});
   auto& c = o.settings.convergence;
   table.add("run", "convergence_tolerance", "-",
             "converged: the reach probability and the energy per run change by less than this (L1, relative) over the "
             "last doubling of the runs (0-1, exclusive)",
-            &c.tolerance);
+            &c.tolerance, Range{0, 1, true, true});
   table.add("run", "min_runs", "runs", "runs = \"auto\": runs per source before the first convergence test (2 or more)",
-            &c.min_runs);
+            &c.min_runs, Range{2, 1e+09, false, false});
   table.add("run", "max_runs", "runs",
-            "runs = \"auto\": most runs per source (min_runs or more); a source stops at the last doubling of min_runs "
+            "runs = \"auto\": most runs per source (min_runs or more, Range{2, 1e+09, false, false}); a source stops at the last doubling of min_runs "
             "not above it",
             &c.max_runs);
   table.add("run", "seed", "", "seed of the counter-based random numbers", &o.settings.seed);
-  table.add("run", "saved_trajectories", "", "at most this many lines in trajectories.gpkg", &o.settings.saved_trajectories);
+  table.add("run", "saved_trajectories", "", "at most this many lines in trajectories.gpkg", &o.settings.saved_trajectories, Range{0, 1e+07, false, false});
   table.add("outputs", "project", "",
             "on: also write project.qgz, hillshade.tif and quicklook/*.png with QGIS (python3-qgis); off: not", &o.project);
   table.add("outputs", "intensity", "",
@@ -94,65 +95,66 @@ ParameterTable parameter_table(RockfallOptions& o) {
             &o.intensity);
   table.add("rock", "shape", "", "sphere, ellipsoid or box", &o.block_shape);
   table.add("rock", "size", "m", "diameter, or axes A,B,C", &o.block_size);
-  table.add("rock", "density", "kg/m3", "rock density", &o.settings.rock.density);
+  table.add("rock", "density", "kg/m3", "rock density", &o.settings.rock.density,
+            Range{kMinRockDensity, kMaxRockDensity, false, false});
   table.add("rock", "fracture_parts", "",
             "pre-fractured block (full mode): 1 intact, 2 halves across the longest axis, 4 also across the second, 8 octants",
-            &o.full.fracture_parts);
+            &o.full.fracture_parts, Range{1, 8, false, false});
   table.add("rock", "fracture_strength", "kN", "force beyond which a bond between two parts of the block breaks",
-            &o.fracture_strength);
+            &o.fracture_strength, Range{0, 1e+09, true, false});
   auto& s = o.settings.stochastic;
-  table.add("stochastic", "release_jitter", "-", "release point uniform over this fraction of its cell", &s.release_jitter);
-  table.add("stochastic", "release_height", "m", "start height of the rock's lowest point above the ground", &s.release_height);
-  table.add("stochastic", "size_variation", "-", "axes scaled by U(1-v, 1+v)", &s.size_variation);
-  table.add("stochastic", "density_variation", "-", "density scaled by U(1-v, 1+v)", &s.density_variation);
-  table.add("stochastic", "restitution_variation", "-", "restitutions scaled by U(1-v, 1+v)", &s.restitution_variation);
-  table.add("stochastic", "friction_variation", "-", "friction scaled by U(1-v, 1+v)", &s.friction_variation);
-  table.add("stochastic", "noise_frequency", "-", "Perlin base frequency times the rock diameter", &s.noise_frequency);
-  table.add("stochastic", "noise_octaves", "", "Perlin octaves", &s.noise_octaves);
+  table.add("stochastic", "release_jitter", "-", "release point uniform over this fraction of its cell", &s.release_jitter, Range{0, 1, false, false});
+  table.add("stochastic", "release_height", "m", "start height of the rock's lowest point above the ground", &s.release_height, Range{0, 1000, false, false});
+  table.add("stochastic", "size_variation", "-", "axes scaled by U(1-v, 1+v)", &s.size_variation, Range{0, 0.9, false, false});
+  table.add("stochastic", "density_variation", "-", "density scaled by U(1-v, 1+v)", &s.density_variation, Range{0, 0.9, false, false});
+  table.add("stochastic", "restitution_variation", "-", "restitutions scaled by U(1-v, 1+v)", &s.restitution_variation, Range{0, 0.9, false, false});
+  table.add("stochastic", "friction_variation", "-", "friction scaled by U(1-v, 1+v)", &s.friction_variation, Range{0, 0.9, false, false});
+  table.add("stochastic", "noise_frequency", "-", "Perlin base frequency times the rock diameter", &s.noise_frequency, Range{0, 100, false, false});
+  table.add("stochastic", "noise_octaves", "", "Perlin octaves", &s.noise_octaves, Range{0, 16, false, false});
   table.add("stochastic", "noise_reference_size", "m",
             "rocks at least this large see the materials' noise amplitudes; a smaller rock sees them scaled by its size / this",
-            &s.noise_reference_size);
+            &s.noise_reference_size, Range{0, 100, true, false});
   auto& f = o.fast;
-  table.add("fast_bounce", "gravity", "m/s2", "gravitational acceleration", &f.gravity);
-  table.add("fast_bounce", "air_density", "kg/m3", "air density for drag", &f.air_density);
-  table.add("fast_bounce", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &f.drag_coefficient);
-  table.add("fast_bounce", "max_time", "s", "simulated time limit per trajectory", &f.max_time);
-  table.add("fast_bounce", "stop_speed", "m/s", "speed under which a rock held by friction stops", &f.stop_speed);
+  table.add("fast_bounce", "gravity", "m/s2", "gravitational acceleration", &f.gravity, Range{0, 100, true, false});
+  table.add("fast_bounce", "air_density", "kg/m3", "air density for drag", &f.air_density, Range{0, 10, false, false});
+  table.add("fast_bounce", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &f.drag_coefficient, Range{0, 10, false, false});
+  table.add("fast_bounce", "max_time", "s", "simulated time limit per trajectory", &f.max_time, Range{0, 100000, true, false});
+  table.add("fast_bounce", "stop_speed", "m/s", "speed under which a rock held by friction stops", &f.stop_speed, Range{0, 10, true, false});
   table.add("fast_bounce", "contact_speed", "m/s", "touchdown or rebound normal speed under which the rock rolls or slides",
-            &f.contact_speed);
-  table.add("fast_bounce", "max_step_length", "m", "longest flight path between two ground checks", &f.max_step_length);
-  table.add("fast_bounce", "sample_spacing", "m", "longest path between two recorded samples", &f.sample_spacing);
-  table.add("fast_bounce", "contact_time_step", "s", "longest step of the rolling/sliding phase", &f.contact_time_step);
+            &f.contact_speed, Range{0, 100, true, false});
+  table.add("fast_bounce", "max_step_length", "m", "longest flight path between two ground checks", &f.max_step_length, Range{0, 100, true, false});
+  table.add("fast_bounce", "sample_spacing", "m", "longest path between two recorded samples", &f.sample_spacing, Range{0, 1000, true, false});
+  table.add("fast_bounce", "contact_time_step", "s", "longest step of the rolling/sliding phase", &f.contact_time_step, Range{0, 10, true, false});
   table.add("fast_bounce", "contact_tolerance", "m", "ground drop or rise within a contact step that ends it (take-off, shorter step)",
-            &f.contact_tolerance);
+            &f.contact_tolerance, Range{0, 10, true, false});
   auto& m = o.full;
-  table.add("full", "gravity", "m/s2", "gravitational acceleration", &m.gravity);
-  table.add("full", "air_density", "kg/m3", "air density for drag", &m.air_density);
-  table.add("full", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &m.drag_coefficient);
-  table.add("full", "max_time", "s", "simulated time limit per trajectory", &m.max_time);
+  table.add("full", "gravity", "m/s2", "gravitational acceleration", &m.gravity, Range{0, 100, true, false});
+  table.add("full", "air_density", "kg/m3", "air density for drag", &m.air_density, Range{0, 10, false, false});
+  table.add("full", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &m.drag_coefficient, Range{0, 10, false, false});
+  table.add("full", "max_time", "s", "simulated time limit per trajectory", &m.max_time, Range{0, 100000, true, false});
   table.add("full", "stop_speed", "m/s", "mean speed of centre and rim over stop_duration under which a rock in contact is at rest",
-            &m.stop_speed);
-  table.add("full", "stop_duration", "s", "window over which the mean speed is compared with stop_speed", &m.stop_duration);
-  table.add("full", "carpet_spacing", "-", "piston spacing as a fraction of the rock's diameter", &m.carpet_spacing);
-  table.add("full", "time_step_factor", "-", "contact step as a fraction of the stiffest contact period", &m.time_step_factor);
-  table.add("full", "max_flight_step", "s", "longest time step in flight", &m.max_flight_step);
-  table.add("full", "sample_spacing", "m", "longest path between two recorded samples", &m.sample_spacing);
-  table.add("full", "friction_slip_speed", "m/s", "slip speed below which Coulomb friction is regularised", &m.friction_slip_speed);
+            &m.stop_speed, Range{0, 10, true, false});
+  table.add("full", "stop_duration", "s", "window over which the mean speed is compared with stop_speed", &m.stop_duration, Range{0, 100, true, false});
+  table.add("full", "carpet_spacing", "-", "piston spacing as a fraction of the rock's diameter", &m.carpet_spacing, Range{0, 1, true, false});
+  table.add("full", "time_step_factor", "-", "contact step as a fraction of the stiffest contact period", &m.time_step_factor, Range{0, 1, true, false});
+  table.add("full", "max_flight_step", "s", "longest time step in flight", &m.max_flight_step, Range{0, 10, true, false});
+  table.add("full", "sample_spacing", "m", "longest path between two recorded samples", &m.sample_spacing, Range{0, 1000, true, false});
+  table.add("full", "friction_slip_speed", "m/s", "slip speed below which Coulomb friction is regularised", &m.friction_slip_speed, Range{0, 10, true, false});
   table.add("full", "rolling_resistance", "-", "multiplier of the lithology's rolling friction (0: pure rolling)",
-            &m.rolling_resistance);
+            &m.rolling_resistance, Range{0, 100, false, false});
   table.add("full", "guard", "", "detect blown-up steps and retry them with smaller steps", &m.guard);
-  table.add("full", "max_retries", "", "step halvings before a run fails with exit code 3", &m.max_retries);
+  table.add("full", "max_retries", "", "step halvings before a run fails with exit code 3", &m.max_retries, Range{0, 60, false, false});
   table.add("full", "approach_fraction", "-", "per step, a piston top may be approached by this fraction of the spacing beyond its gap",
-            &m.approach_fraction);
-  table.add("full", "fresh_contact_pistons", "", "a coming contact's stiffness counts this many pistons at k3", &m.fresh_contact_pistons);
+            &m.approach_fraction, Range{0, 1, true, false});
+  table.add("full", "fresh_contact_pistons", "", "a coming contact's stiffness counts this many pistons at k3", &m.fresh_contact_pistons, Range{0, 1e+06, false, false});
   table.add("full", "grazing_cosine", "-",
             "floor of |normal . piston axis| in the piston force; a fragment's piston compresses at most its depth in the rock / this",
-            &m.grazing_cosine);
+            &m.grazing_cosine, Range{0, 1, true, false});
   table.add("full", "guard_tolerance", "-", "energy growth per step, relative to kinetic + elastic + m g spacing, that counts as blow-up",
-            &m.guard_tolerance);
-  table.add("full", "carpet_margin", "m", "extra width of the piston carpet around the rock's footprint", &m.carpet_margin);
-  table.add("full", "surface_samples", "", "surface samples of the rock (air drag integral)", &m.surface_samples);
-  table.add("full", "mass_resolution", "", "cells per axis of the mass and inertia integration", &m.mass_resolution);
+            &m.guard_tolerance, Range{0, 1000, true, false});
+  table.add("full", "carpet_margin", "m", "extra width of the piston carpet around the rock's footprint", &m.carpet_margin, Range{0, 100, false, false});
+  table.add("full", "surface_samples", "", "surface samples of the rock (air drag integral)", &m.surface_samples, Range{1, 1e+06, false, false});
+  table.add("full", "mass_resolution", "", "cells per axis of the mass and inertia integration", &m.mass_resolution, Range{1, 1000, false, false});
   return table;
 }
 
@@ -273,14 +275,9 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
   if (o.settings.rock.shape == BlockShape::sphere && o.settings.rock.axes.maxCoeff() != o.settings.rock.axes.minCoeff()) {
     throw InputError("--block-size " + o.block_size + ": a sphere has one diameter; use --block-shape ellipsoid or box");
   }
-  if (!(o.settings.rock.density >= kMinRockDensity && o.settings.rock.density <= kMaxRockDensity)) {
-    throw InputError("--density " + std::to_string(o.settings.rock.density) + ": expected 500-6000 kg/m3");
-  }
   validate_runs(o);
-  const double reference = o.settings.stochastic.noise_reference_size;
-  if (!(reference > 0.0 && reference <= 100.0)) {
-    throw InputError("[stochastic] noise_reference_size " + std::to_string(reference) + ": expected 0-100 m");
-  }
+  // Every other number against its range, naming the flag or scenario key that gave it.
+  table.check_ranges();
   const int parts = o.full.fracture_parts;
   if (parts != 1 && parts != 2 && parts != 4 && parts != 8) {
     throw InputError("[rock] fracture_parts " + std::to_string(parts) + ": use 1 (intact), 2, 4 or 8");
@@ -441,7 +438,7 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
     for (const auto& [option, key] : flags) {
       if (option->count() == 0) continue;
       const std::string name(key);
-      table->pin(name.substr(0, name.find('.')), name.substr(name.find('.') + 1));
+      table->pin(name.substr(0, name.find('.')), name.substr(name.find('.') + 1), option->get_name());
     }
     action = [o, table] { return run_rockfall_command(*o, *table); };
   });

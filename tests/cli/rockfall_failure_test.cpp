@@ -49,8 +49,9 @@ class RockfallFailure : public ::testing::Test {
  protected:
   void SetUp() override {
     root_ = test::fresh_folder("rockfall_failure");
-    // A guard that no step can pass: every trajectory fails at its first step.
-    std::ofstream(root_ / "failing.toml") << "[full]\nguard_tolerance = -1.0\n";
+    // A guard that hardly any step can pass, without retries: the trajectories fail (a negative
+    // tolerance, which no step passed, is now refused by its range).
+    std::ofstream(root_ / "failing.toml") << "[full]\nguard_tolerance = 1e-300\nmax_retries = 0\n";
   }
   void TearDown() override { fs::remove_all(root_); }
   fs::path root_;
