@@ -220,7 +220,7 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   check.require(o.release_thickness == "normal" || o.release_thickness == "vertical", "mud", "release_thickness",
                 o.release_thickness, "use normal or vertical");
   o.settings.release_thickness = parse_release_thickness(o.release_thickness);
-  check.require(o.release_depth == 0.0 || (o.release_depth >= 0.01 && o.release_depth <= 100.0), "mud", "release_depth",
+  check.require(o.release_depth == 0.0 || (o.release_depth >= 0.01 && o.release_depth <= gis::kMaxReleaseDepth), "mud", "release_depth",
                 o.release_depth, "expected 0 (the release file's depths) or a depth of 0.01-100 m");
   check.require(!o.depth_field.empty(), "mud", "depth_field", o.depth_field, "expected an attribute name");
   check.require(o.release_depth == 0.0 || o.depth_field == "depth", "mud", "depth_field", o.depth_field,
