@@ -23,25 +23,31 @@
 namespace talus::gis {
 namespace {
 
-// One number of a lithology class: its key in the file, its member, and the comment written
-// beside it (symbol and unit).
+// One number of a lithology class: its key in the file, its member, the comment written beside
+// it (symbol and unit), and its unit and range (materials_fields).
 struct LithologyNumber {
   std::string_view key;
   double LithologyClass::*member;
-  std::string_view comment;
+  std::string_view comment, unit;
+  double min, max;
 };
 
+// The ranges hold every class of ../shared/REFERENCES.md's tables with room to spare; beyond them
+// the piston carpet's steps or the bounce model stop meaning anything.
 constexpr std::array<LithologyNumber, 9> lithology_numbers{{
-    {"elastic_slope", &LithologyClass::elastic_slope, "k1, Pa/m"},
-    {"yield_pressure", &LithologyClass::yield_pressure, "Pa"},
-    {"plastic_slope", &LithologyClass::plastic_slope, "k2, Pa/m"},
-    {"unloading_slope", &LithologyClass::unloading_slope, "k3, Pa/m"},
-    {"friction", &LithologyClass::friction, "sliding, tan of the friction angle, -"},
-    {"rolling_friction", &LithologyClass::rolling_friction, "rolling, mu_r, -"},
-    {"restitution_normal", &LithologyClass::restitution_normal, "fast mode, -"},
-    {"restitution_tangential", &LithologyClass::restitution_tangential, "fast mode, -"},
-    {"noise_amplitude", &LithologyClass::noise_amplitude, "m"},
+    {"elastic_slope", &LithologyClass::elastic_slope, "k1, Pa/m", "Pa/m", 1e3, 1e12},
+    {"yield_pressure", &LithologyClass::yield_pressure, "Pa", "Pa", 1e2, 1e10},
+    {"plastic_slope", &LithologyClass::plastic_slope, "k2, Pa/m", "Pa/m", 1e2, 1e12},
+    {"unloading_slope", &LithologyClass::unloading_slope, "k3, Pa/m", "Pa/m", 1e3, 1e13},
+    {"friction", &LithologyClass::friction, "sliding, tan of the friction angle, -", "-", 0, 10},
+    {"rolling_friction", &LithologyClass::rolling_friction, "rolling, mu_r, -", "-", 0, 10},
+    {"restitution_normal", &LithologyClass::restitution_normal, "fast mode, -", "-", 0, 1},
+    {"restitution_tangential", &LithologyClass::restitution_tangential, "fast mode, -", "-", 0, 1},
+    {"noise_amplitude", &LithologyClass::noise_amplitude, "m", "m", 0, 10},
 }};
+
+// The vegetation's one number, the deperdition coefficient c (1/m).
+constexpr double kMaxDeperdition = 10.0;
 
 constexpr std::array<std::string_view, 4> top_level_keys{"default_lithology", "default_vegetation",
                                                          "lithology", "vegetation"};
@@ -176,7 +182,7 @@ class MaterialsReader {
 
  private:
   [[noreturn]] void fail(const std::string& problem) const {
-    throw InputError(path_.string() + ": " + problem);
+    throw InputError(path_.string() + " (materials): " + problem);
   }
 
   template <std::size_t N>
@@ -224,6 +230,15 @@ class MaterialsReader {
     return v;
   }
 
+  // A number within [min, max], or the key, the value and the range.
+  void check_range(const toml::node& node, std::string_view key, const std::string& where, double value, double min,
+                   double max, std::string_view unit) const {
+    if (value >= min && value <= max) return;
+    std::string expected = "expected " + toml_number(min) + " to " + toml_number(max);
+    if (unit != "-") expected += " " + std::string(unit);
+    fail(quoted(key, where) + " = " + toml_number(value) + at_line(node) + ": " + expected);
+  }
+
   std::string text(const toml::node& node, std::string_view key, const std::string& where) const {
     const auto* value = node.as_string();
     if (value == nullptr) {
@@ -265,7 +280,9 @@ class MaterialsReader {
     LithologyClass c;
     const std::string where = identify(entry, lithology_keys, "lithology", position, c);
     for (const LithologyNumber& n : lithology_numbers) {
-      c.*n.member = number(field(entry, n.key, where), n.key, " in " + where);
+      const toml::node& node = field(entry, n.key, where);
+      c.*n.member = number(node, n.key, " in " + where);
+      check_range(node, n.key, " in " + where, c.*n.member, n.min, n.max, n.unit);
     }
     const std::string at = where + at_line(entry) + ": ";
     if (!(0 < c.plastic_slope && c.plastic_slope < c.elastic_slope && c.elastic_slope < c.unloading_slope)) {
@@ -273,26 +290,15 @@ class MaterialsReader {
            toml_number(c.plastic_slope) + ", " + toml_number(c.elastic_slope) + ", " +
            toml_number(c.unloading_slope));
     }
-    if (!(c.yield_pressure > 0)) fail(at + "yield_pressure must be > 0, got " + toml_number(c.yield_pressure));
-    if (!(c.friction >= 0)) fail(at + "friction must be >= 0, got " + toml_number(c.friction));
-    if (!(c.rolling_friction >= 0)) fail(at + "rolling_friction must be >= 0, got " + toml_number(c.rolling_friction));
-    if (!(c.restitution_normal >= 0 && c.restitution_normal <= 1)) {
-      fail(at + "restitution_normal must be within [0, 1], got " + toml_number(c.restitution_normal));
-    }
-    if (!(c.restitution_tangential >= 0 && c.restitution_tangential <= 1)) {
-      fail(at + "restitution_tangential must be within [0, 1], got " + toml_number(c.restitution_tangential));
-    }
-    if (!(c.noise_amplitude >= 0)) fail(at + "noise_amplitude must be >= 0, got " + toml_number(c.noise_amplitude));
     return c;
   }
 
   VegetationClass vegetation(const toml::table& entry, std::size_t position) const {
     VegetationClass c;
     const std::string where = identify(entry, vegetation_keys, "vegetation", position, c);
-    c.deperdition = number(field(entry, "deperdition", where), "deperdition", " in " + where);
-    if (!(c.deperdition >= 0)) {
-      fail(where + at_line(entry) + ": deperdition must be >= 0, got " + toml_number(c.deperdition));
-    }
+    const toml::node& node = field(entry, "deperdition", where);
+    c.deperdition = number(node, "deperdition", " in " + where);
+    check_range(node, "deperdition", " in " + where, c.deperdition, 0, kMaxDeperdition, "1/m");
     return c;
   }
 
@@ -300,6 +306,16 @@ class MaterialsReader {
 };
 
 }  // namespace
+
+const std::vector<MaterialsField>& materials_fields() {
+  static const std::vector<MaterialsField> fields = [] {
+    std::vector<MaterialsField> out;
+    for (const LithologyNumber& n : lithology_numbers) out.push_back({"lithology", n.key, n.unit, n.comment, n.min, n.max});
+    out.push_back({"vegetation", "deperdition", "1/m", "deperdition coefficient c", 0, kMaxDeperdition});
+    return out;
+  }();
+  return fields;
+}
 
 MaterialsTable read_materials(const std::filesystem::path& path) { return MaterialsReader(path).read(); }
 

@@ -63,11 +63,19 @@ StagedFolder::StagedFolder(const std::filesystem::path& out) {
                                "a run replaces its folder whole, so give a new or empty folder");
     }
   }
+  for (auto folder = out_.parent_path(); !std::filesystem::exists(folder, error) && folder != folder.root_path();
+       folder = folder.parent_path()) {
+    created_parents_.push_back(folder);
+  }
   std::filesystem::create_directories(out_.parent_path(), error);
-  if (error) throw InputError(shown + " (--out): cannot create " + out_.parent_path().string() + ": " + error.message());
+  if (error) {
+    remove_created_parents();
+    throw InputError(shown + " (--out): cannot create " + out_.parent_path().string() + ": " + error.message());
+  }
   remove_abandoned_staging(out_);
   std::string pattern = (out_.parent_path() / (staging_prefix(out_) + std::to_string(::getpid()) + "-XXXXXX")).string();
   if (::mkdtemp(pattern.data()) == nullptr) {
+    remove_created_parents();
     throw InputError(shown + " (--out): cannot write into " + out_.parent_path().string() + ": " + std::strerror(errno));
   }
   staging_ = pattern;
@@ -77,6 +85,12 @@ StagedFolder::~StagedFolder() {
   if (committed_) return;
   std::error_code ignored;
   std::filesystem::remove_all(staging_, ignored);
+  remove_created_parents();
+}
+
+void StagedFolder::remove_created_parents() const {
+  std::error_code ignored;
+  for (const auto& folder : created_parents_) std::filesystem::remove(folder, ignored);  // only while empty
 }
 
 void StagedFolder::commit() {

@@ -13,7 +13,9 @@
 
 #include "commands.hpp"
 #include "number_list.hpp"
+#include "parameter_table.hpp"
 #include "terminal_progress.hpp"
+#include "whole_number.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/materials_file.hpp"
 #include "talus/gis/run_record.hpp"
@@ -170,7 +172,10 @@ void check_options(const CalibrateOptions& o) {
   }
   if (o.runs == 0) throw InputError("--runs 0: at least one run per release point");
   if (o.fast_runs == 0) throw InputError("--fast-runs 0: at least one run per release point");
-  if (o.threads < 0) throw InputError("--threads " + std::to_string(o.threads) + ": use 0 (all cores) or more");
+  if (o.threads < 0 || o.threads > kMaxThreads) {
+    throw InputError("--threads " + std::to_string(o.threads) + ": expected 0 (all cores) or 1-" +
+                     std::to_string(static_cast<int>(kMaxThreads)));
+  }
 }
 
 int run_calibrate_command(const CalibrateOptions& o) {
@@ -244,7 +249,7 @@ void add_calibrate_command(CLI::App& app, Action& action, const std::vector<std:
   cmd->add_option("--slopes", o->slopes, "Slope angles of the calibration scenes (deg)")->default_val("30,40");
   cmd->add_option("--runs", o->runs, "Full-model runs per release point and slope (12 release points)")->default_val(2);
   cmd->add_option("--fast-runs", o->fast_runs, "Fast-mode runs per release point and slope")->default_val(8);
-  cmd->add_option("--seed", o->seed, "Random seed")->default_val(1);
+  cmd->add_option("--seed", o->seed, "Random seed")->default_val(1)->check(whole_number());
   cmd->add_option("--threads", o->threads, "Threads (default: all cores)");
   cmd->callback([o, &action] { action = [o] { return run_calibrate_command(*o); }; });
 }

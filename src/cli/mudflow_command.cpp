@@ -16,6 +16,7 @@
 #include "intensity_layer.hpp"
 #include "mudflow_materials.hpp"
 #include "parameter_table.hpp"
+#include "whole_number.hpp"
 #include "run_project.hpp"
 #include "terminal_progress.hpp"
 #include "talus/core/errors.hpp"
@@ -46,8 +47,7 @@ struct MudflowOptions {
   std::vector<std::string> command_line;
 };
 
-// Particle snapshots: the closest interval (s) and the most snapshots a run writes.
-constexpr double kMinSnapshotInterval = 0.01;
+// Particle snapshots: the most a run writes.
 constexpr double kMaxSnapshots = 100000.0;
 
 // The parameters that have a command-line flag: a flag given pins its parameter against the
@@ -67,84 +67,86 @@ constexpr Flag kFlags[] = {{"run", "duration", "--duration"},       {"run", "see
 
 // Every MudflowSettings field (mudflow_simulation.hpp, rheology.hpp) as a scenario parameter.
 ParameterTable parameter_table(MudflowOptions& o) {
+  using Range = ParameterTable::Range;  // the allowed values, in the unit (issue 18, item 1)
   ParameterTable table;
   auto& s = o.settings;
-  table.add("run", "duration", "s", "longest simulated time", &s.duration);
+  table.add("run", "duration", "s", "longest simulated time", &s.duration, Range{0, 86400, true, false});
   table.add("run", "stop_energy_fraction", "-", "the run ends when the kinetic energy falls below this fraction of its peak",
-            &s.stop_energy_fraction);
+            &s.stop_energy_fraction, Range{0, 1, false, true});
   table.add("run", "seed", "", "seed of the jitter of the particles' initial places", &s.seed);
-  table.add("run", "threads", "", "threads (0: all cores); the layers do not depend on it", &s.threads);
-  table.add("run", "parallel_particles", "", "loops over fewer particles than this run on one thread", &s.parallel_particles);
+  table.add("run", "threads", "", "threads (0: all cores); the layers do not depend on it", &s.threads,
+            Range{1, kMaxThreads, false, false, 0, "all cores"});
+  table.add("run", "parallel_particles", "", "loops over fewer particles than this run on one thread", &s.parallel_particles, Range{1, 1e9, false, false});
   table.add("run", "parallel_check_period", "",
             "coarse steps between timed trials of one thread against all threads for the particle loops, which then "
             "run the faster way (0: always all threads); the layers do not depend on it",
-            &s.parallel_check_period);
+            &s.parallel_check_period, Range{3, 1e9, false, false, 0, "always all threads"});
   table.add("run", "interleaved_particles", "",
             "threads with at least this many particles to evaluate compute each particle's forces as soon as the "
             "densities they read are done, while its neighbour list is in the cache; fewer: all densities first; the "
             "layers do not depend on it",
-            &s.interleaved_particles);
+            &s.interleaved_particles, Range{1, 1e9, false, false});
   table.add("mud", "material", "",
             "material preset that sets the rheology, its parameters and the density before the scenario's own keys: " +
                 MudflowMaterials::built_in().name_list(),
             &o.material);
-  table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density);
-  table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity);
-  table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size);
+  table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density, Range{100, 3000, false, false});
+  table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity, Range{0, 30, true, false});
+  table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size, Range{0.05, 100, false, false});
   table.add("mud", "release_thickness", "",
             "how a release depth is measured: normal (to the ground, the thin-layer convention) or vertical",
             &o.release_thickness);
   table.add("mud", "release_depth", "m",
             "one release depth for every release cell, polygon and point, whatever the release file holds (0: the "
             "file's depths)",
-            &o.release_depth);
+            &o.release_depth, Range{0.01, gis::kMaxReleaseDepth, false, false, 0, "the release file's depths"});
   table.add("mud", "depth_field", "", "the attribute of a vector release that holds each feature's depth (m)",
             &o.depth_field);
   table.add("adaptivity", "adaptive", "", "particle fission and fusion and individual time steps (paper 4.2)", &s.adaptive);
   table.add("adaptivity", "coarse_levels", "",
-            "particle sizes are particle_size x 2^k, k = 0..coarse_levels; the release uses the coarsest", &s.coarse_levels);
+            "particle sizes are particle_size x 2^k, k = 0..coarse_levels; the release uses the coarsest", &s.coarse_levels, Range{0, 8, false, false});
   table.add("adaptivity", "split_threshold", "-", "a particle splits when its size x |grad P| / P exceeds this",
-            &s.split_threshold);
+            &s.split_threshold, Range{0, 100, true, false});
   table.add("adaptivity", "merge_threshold", "-", "a calm group merges when each member's size x |grad P| / P is below this",
-            &s.merge_threshold);
-  table.add("adaptivity", "merge_speed", "m/s", "and its members' velocities differ by less than this", &s.merge_speed);
+            &s.merge_threshold, Range{0, 100, false, true});
+  table.add("adaptivity", "merge_speed", "m/s", "and its members' velocities differ by less than this", &s.merge_speed, Range{0, 100, false, false});
   table.add("time_steps", "courant", "-",
-            "C in dt = C min(s / (c + w), sqrt(s / |a|)), w the fastest closing speed of a neighbour", &s.courant);
+            "C in dt = C min(s / (c + w), sqrt(s / |a|)), w the fastest closing speed of a neighbour", &s.courant, Range{0, 1, true, false});
   table.add("time_steps", "cells_per_step", "-", "a particle's step crosses at most this many DEM cells",
-            &s.cells_per_step);
-  table.add("time_steps", "longest_step", "s", "step of level 0; level k steps are longest_step / 2^k", &s.longest_step);
-  table.add("time_steps", "deepest_level", "", "deepest step level", &s.deepest_level);
+            &s.cells_per_step, Range{0, 10, true, false});
+  table.add("time_steps", "longest_step", "s", "step of level 0; level k steps are longest_step / 2^k", &s.longest_step, Range{0.001, 10, false, false});
+  table.add("time_steps", "deepest_level", "", "deepest step level", &s.deepest_level, Range{0, 30, false, false});
   table.add("time_steps", "guard", "", "detect blown-up steps and retry them with halved steps", &s.guard);
-  table.add("time_steps", "max_retries", "", "step halvings before a run fails with exit code 3", &s.max_retries);
+  table.add("time_steps", "max_retries", "", "step halvings before a run fails with exit code 3", &s.max_retries, Range{0, 20, false, false});
   table.add("time_steps", "unguarded_step", "s", "> 0: one global step that ignores the Courant condition (tests of the guard)",
-            &s.unguarded_step);
+            &s.unguarded_step, Range{1e-4, 10, false, false, 0, "off"});
   table.add("contact", "curvature", "",
             "the basal normal stress includes the centripetal term rho0 h u^2 kappa of the ground's curvature", &s.curvature);
   table.add("contact", "curvature_span", "m",
             "kappa is measured between the ground normals this far apart along the velocity (at least one DEM cell and "
             "the particle's spacing)",
-            &s.curvature_span);
+            &s.curvature_span, Range{0, 1000, false, false});
   auto& r = s.rheology;
   table.add("rheology", "rheology", "", "basal resistance: viscous, coulomb, voellmy or bingham", &o.rheology);
   table.add("rheology", "friction", "-", "Coulomb friction coefficient mu of the basal resistance (coulomb, voellmy)",
-            &r.friction);
+            &r.friction, Range{0, 1, false, false});
   table.retire("rheology", "friction_factor",
                "no longer used: give [rheology] friction, the friction coefficient mu itself (0-1); the lithology no "
                "longer sets the mud's friction");
-  table.add("rheology", "turbulence", "m/s2", "turbulence coefficient xi of Voellmy", &r.turbulence);
-  table.add("rheology", "viscosity", "Pa s", "dynamic viscosity eta (viscous and Bingham)", &r.viscosity);
-  table.add("rheology", "yield_stress", "Pa", "yield stress tau_y of Bingham", &r.yield_stress);
+  table.add("rheology", "turbulence", "m/s2", "turbulence coefficient xi of Voellmy", &r.turbulence, Range{0, 1e6, true, false});
+  table.add("rheology", "viscosity", "Pa s", "dynamic viscosity eta (viscous and Bingham)", &r.viscosity, Range{0, 1e9, false, false});
+  table.add("rheology", "yield_stress", "Pa", "yield stress tau_y of Bingham", &r.yield_stress, Range{0, 1e7, false, false});
   table.add("rheology", "internal_viscosity", "m2/s", "kinematic viscosity of the internal friction between particles",
-            &r.internal_viscosity);
+            &r.internal_viscosity, Range{0, 1e4, false, false});
   table.add("deposition", "stop_speed", "m/s", "mud slower than this for stop_duration, and held by the bed, deposits",
-            &s.stop_speed);
-  table.add("deposition", "stop_duration", "s", "how long the mud must stay slower than stop_speed", &s.stop_duration);
+            &s.stop_speed, Range{0, 100, false, false});
+  table.add("deposition", "stop_duration", "s", "how long the mud must stay slower than stop_speed", &s.stop_duration, Range{0, 86400, false, false});
   table.add("entrainment", "rate", "1/m", "entrainment rate E: the bed erodes at E h |u| (m/s) where erodible material lies",
-            &s.entrainment_rate);
-  table.add("outputs", "arrival_depth", "m", "a cell is reached when its flow depth first exceeds this", &s.arrival_depth);
+            &s.entrainment_rate, Range{0, 10, false, false});
+  table.add("outputs", "arrival_depth", "m", "a cell is reached when its flow depth first exceeds this", &s.arrival_depth, Range{0, 100, true, false});
   table.add("outputs", "map_interval", "s", "flow depth, velocity and pressure maxima are sampled this often",
-            &s.map_interval);
-  table.add("outputs", "snapshot_interval", "s", "> 0: particles.gpkg holds the particles this often", &s.snapshot_interval);
+            &s.map_interval, Range{0.01, 3600, false, false});
+  table.add("outputs", "snapshot_interval", "s", "> 0: particles.gpkg holds the particles this often", &s.snapshot_interval, Range{0.01, 86400, false, false, 0, "none"});
   table.add("outputs", "project", "",
             "on: also write project.qgz, hillshade.tif and quicklook/*.png with QGIS (python3-qgis); off: not", &o.project);
   table.add("outputs", "intensity", "",
@@ -162,35 +164,6 @@ std::string number_text(double value) {
   return text.str();
 }
 
-// Refuses out-of-range parameters with one line that names where the value came from: the flag
-// given on the command line, or the scenario file and its [section] key.
-class ParameterCheck {
- public:
-  ParameterCheck(const ParameterTable& table, const std::filesystem::path& scenario) : table_(table), scenario_(scenario) {}
-
-  void require(bool ok, const std::string& section, const std::string& name, const std::string& value,
-               const std::string& expected) const {
-    if (ok) return;
-    throw InputError(where(section, name) + " " + value + ": " + expected);
-  }
-  void require(bool ok, const std::string& section, const std::string& name, double value, const std::string& expected) const {
-    require(ok && std::isfinite(value), section, name, number_text(value), expected);
-  }
-
- private:
-  std::string where(const std::string& section, const std::string& name) const {
-    if (table_.given_on_command_line(section, name)) {
-      for (const Flag& flag : kFlags) {
-        if (section == flag.section && name == flag.name) return flag.option;
-      }
-    }
-    const std::string key = "[" + section + "] " + name;
-    return scenario_.empty() ? key : scenario_.string() + " (scenario): " + key;
-  }
-  const ParameterTable& table_;
-  std::filesystem::path scenario_;
-};
-
 // --adaptive on|off.
 bool parse_on_off(const std::string& text) {
   if (text == "on") return true;
@@ -202,81 +175,39 @@ bool parse_on_off(const std::string& text) {
 // the scenario's own keys and the flags (docs/mudflow.md, "Materials").
 void apply_material(const MudflowOptions& o, ParameterTable& table) {
   const MudflowMaterials& materials = MudflowMaterials::built_in();
-  const ParameterCheck check(table, o.scenario);
-  check.require(materials.contains(o.material), "mud", "material", o.material,
+  table.require(materials.contains(o.material), "mud", "material", o.material,
                 "expected one of " + materials.name_list());
   materials.apply(o.material, table);
 }
 
-// Every parameter within the range the model is meant for (docs/mudflow.md).
+// Every parameter within its range (the table's data, docs/mudflow.md), then the choices and the
+// rules between values that a range cannot say.
 void validate(MudflowOptions& o, const ParameterTable& table) {
-  const ParameterCheck check(table, o.scenario);
+  table.check_ranges();
   const auto& s = o.settings;
-  const auto& r = s.rheology;
   const std::string rheology = o.rheology;
-  check.require(rheology == "viscous" || rheology == "coulomb" || rheology == "voellmy" || rheology == "bingham", "rheology",
+  table.require(rheology == "viscous" || rheology == "coulomb" || rheology == "voellmy" || rheology == "bingham", "rheology",
                 "rheology", rheology, "use viscous, coulomb, voellmy or bingham");
   o.settings.rheology.rheology = parse_rheology(rheology);
-  check.require(o.release_thickness == "normal" || o.release_thickness == "vertical", "mud", "release_thickness",
+  table.require(o.release_thickness == "normal" || o.release_thickness == "vertical", "mud", "release_thickness",
                 o.release_thickness, "use normal or vertical");
   o.settings.release_thickness = parse_release_thickness(o.release_thickness);
-  check.require(o.release_depth == 0.0 || (o.release_depth >= 0.01 && o.release_depth <= gis::kMaxReleaseDepth), "mud", "release_depth",
-                o.release_depth, "expected 0 (the release file's depths) or a depth of 0.01-100 m");
-  check.require(!o.depth_field.empty(), "mud", "depth_field", o.depth_field, "expected an attribute name");
-  check.require(o.release_depth == 0.0 || o.depth_field == "depth", "mud", "depth_field", o.depth_field,
+  table.require(!o.depth_field.empty(), "mud", "depth_field", o.depth_field, "expected an attribute name");
+  table.require(o.release_depth == 0.0 || o.depth_field == "depth", "mud", "depth_field", o.depth_field,
                 "give either a depth attribute or one release depth, not both");
   o.inputs.release_depth.field = o.depth_field;
   if (o.release_depth > 0.0) o.inputs.release_depth.uniform = o.release_depth;
-  check.require(s.duration > 0.0 && s.duration <= 86400.0, "run", "duration", s.duration, "expected a time > 0 s, at most a day");
-  check.require(s.stop_energy_fraction >= 0.0 && s.stop_energy_fraction < 1.0, "run", "stop_energy_fraction",
-                s.stop_energy_fraction, "expected a fraction in [0, 1)");
-  check.require(s.threads >= 0, "run", "threads", s.threads, "expected 0 (all cores) or more");
-  check.require(s.parallel_particles >= 1, "run", "parallel_particles", s.parallel_particles, "expected 1 or more");
-  check.require(s.interleaved_particles >= 1, "run", "interleaved_particles", s.interleaved_particles,
-                "expected 1 or more");
-  check.require(s.parallel_check_period == 0 || s.parallel_check_period >= 3, "run", "parallel_check_period",
-                s.parallel_check_period, "expected 0 (always all threads) or 3 or more coarse steps");
-  check.require(s.mud_density >= 100.0 && s.mud_density <= 3000.0, "mud", "density", s.mud_density,
-                "expected 100-3000 kg/m3");
-  check.require(s.gravity > 0.0 && s.gravity <= 30.0, "mud", "gravity", s.gravity, "expected 0-30 m/s2");
-  check.require(s.particle_size > 0.0, "mud", "particle_size", s.particle_size, "expected a spacing > 0 m");
-  check.require(s.coarse_levels <= 8, "adaptivity", "coarse_levels", s.coarse_levels, "expected 0-8");
-  check.require(s.split_threshold > 0.0, "adaptivity", "split_threshold", s.split_threshold, "expected a ratio > 0");
-  check.require(s.merge_threshold >= 0.0 && s.merge_threshold < s.split_threshold, "adaptivity", "merge_threshold",
-                s.merge_threshold, "expected a ratio >= 0 below split_threshold " + number_text(s.split_threshold));
-  check.require(s.merge_speed >= 0.0, "adaptivity", "merge_speed", s.merge_speed, "expected a speed >= 0 m/s");
-  check.require(s.courant > 0.0 && s.courant <= 1.0, "time_steps", "courant", s.courant, "expected a number in (0, 1]");
-  check.require(s.cells_per_step > 0.0 && s.cells_per_step <= 10.0, "time_steps", "cells_per_step", s.cells_per_step,
-                "expected a number of cells in (0, 10]");
-  check.require(s.longest_step > 0.0 && s.longest_step <= 10.0, "time_steps", "longest_step", s.longest_step,
-                "expected a step > 0 s, at most 10 s");
-  check.require(s.deepest_level <= 30, "time_steps", "deepest_level", s.deepest_level, "expected 0-30");
-  check.require(s.max_retries <= 20, "time_steps", "max_retries", s.max_retries, "expected 0-20");
-  check.require(s.unguarded_step >= 0.0, "time_steps", "unguarded_step", s.unguarded_step, "expected 0 (off) or a step > 0 s");
-  check.require(s.curvature_span >= 0.0 && s.curvature_span <= 1000.0, "contact", "curvature_span", s.curvature_span,
-                "expected a length in 0-1000 m");
-  check.require(r.friction >= 0.0 && r.friction <= 1.0, "rheology", "friction", r.friction,
-                "expected a coefficient in [0, 1]");
-  check.require(r.turbulence > 0.0, "rheology", "turbulence", r.turbulence, "expected a coefficient > 0 m/s2");
-  check.require(r.viscosity >= 0.0, "rheology", "viscosity", r.viscosity, "expected a viscosity >= 0 Pa s");
-  check.require(r.yield_stress >= 0.0, "rheology", "yield_stress", r.yield_stress, "expected a stress >= 0 Pa");
-  check.require(r.internal_viscosity >= 0.0, "rheology", "internal_viscosity", r.internal_viscosity,
-                "expected a viscosity >= 0 m2/s");
-  check.require(s.stop_speed >= 0.0, "deposition", "stop_speed", s.stop_speed, "expected a speed >= 0 m/s");
-  check.require(s.stop_duration >= 0.0, "deposition", "stop_duration", s.stop_duration, "expected a time >= 0 s");
-  check.require(s.entrainment_rate >= 0.0, "entrainment", "rate", s.entrainment_rate, "expected a rate >= 0 1/m");
-  check.require(s.arrival_depth > 0.0, "outputs", "arrival_depth", s.arrival_depth, "expected a depth > 0 m");
-  check.require(s.map_interval > 0.0, "outputs", "map_interval", s.map_interval, "expected an interval > 0 s");
+  table.require(s.merge_threshold < s.split_threshold, "adaptivity", "merge_threshold", number_text(s.merge_threshold),
+                "expected a ratio below split_threshold " + number_text(s.split_threshold));
+  // At most kMaxSnapshots in the run, so that a tiny interval is refused now, not after the whole
+  // flow when particles.gpkg is written (issue 18).
+  table.require(s.snapshot_interval == 0.0 || s.duration / s.snapshot_interval <= kMaxSnapshots, "outputs",
+                "snapshot_interval", number_text(s.snapshot_interval), "expected at most 100000 snapshots over --duration");
   const bool snapshots_flag = table.given_on_command_line("outputs", "snapshot_interval");
-  // At least kMinSnapshotInterval apart and at most kMaxSnapshots in the run, so that a tiny
-  // interval is refused now, not after the whole flow when particles.gpkg is written (issue 18).
-  const bool snapshot_ok = s.snapshot_interval >= kMinSnapshotInterval && s.duration / s.snapshot_interval <= kMaxSnapshots;
-  check.require(snapshots_flag ? snapshot_ok : (s.snapshot_interval == 0.0 || snapshot_ok), "outputs",
-                "snapshot_interval", s.snapshot_interval,
-                std::string(snapshots_flag ? "expected an interval" : "expected 0 (none) or an interval") +
-                    " of at least 0.01 s and at most 100000 snapshots over --duration");
+  table.require(!snapshots_flag || s.snapshot_interval > 0.0, "outputs", "snapshot_interval",
+                number_text(s.snapshot_interval), "expected an interval of at least 0.01 s");
   const std::optional<std::int64_t> start = gis::parse_snapshot_start(o.snapshot_start);
-  check.require(start.has_value(), "outputs", "snapshot_start", o.snapshot_start,
+  table.require(start.has_value(), "outputs", "snapshot_start", o.snapshot_start,
                 "expected a date-time YYYY-MM-DDTHH:MM:SS, years 1000-9999");
   o.snapshot_start_seconds = *start;
 }
@@ -479,7 +410,7 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
                        ->default_val(o->rheology);
   auto* snapshots = cmd->add_option("--snapshots", o->settings.snapshot_interval,
                                     "Write particles.gpkg with the particles every SECONDS of simulated time");
-  auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(defaults.seed);
+  auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(defaults.seed)->check(whole_number());
   auto* start_time = cmd->add_option("--start-time", o->snapshot_start,
                                      "Date-time of the release on particles.gpkg's clock, YYYY-MM-DDTHH:MM:SS (default "
                                      "2000-01-01T00:00:00: the clock reads the time since release)");
@@ -502,7 +433,7 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
                                   snapshots, depth,    depth_field, start_time, intensity, project};
     static_assert(std::size(kFlags) == std::size(given));
     for (std::size_t k = 0; k < std::size(kFlags); ++k) {
-      if (given[k]->count() > 0) table->pin(kFlags[k].section, kFlags[k].name);
+      if (given[k]->count() > 0) table->pin(kFlags[k].section, kFlags[k].name, kFlags[k].option);
     }
     const bool adaptive_given = adaptive->count() > 0;
     action = [o, table, adaptive_given] { return run_mudflow_command(*o, *table, adaptive_given); };

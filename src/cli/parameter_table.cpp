@@ -56,32 +56,55 @@ void ParameterTable::check_ranges() const {
   for (const auto& e : entries_) {
     if (!e.range) continue;
     std::optional<double> value;
+    std::string value_text;  // as the user wrote it: integers in digits, not "1e+12"
     std::visit(
         [&](auto* target) {
           using T = std::remove_pointer_t<decltype(target)>;
           if constexpr (std::is_same_v<T, CountOrAuto>) {
             if (!target->automatic) value = static_cast<double>(target->count);
-          } else if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+            value_text = std::to_string(target->count);
+          } else if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
             value = static_cast<double>(*target);
+            value_text = std::to_string(*target);
+          } else if constexpr (std::is_floating_point_v<T>) {
+            value = *target;
+            std::ostringstream text;
+            text.precision(10);
+            text << *target;
+            value_text = text.str();
           }
         },
         e.target);
     if (!value) continue;
     const Range& r = *e.range;
-    const bool inside = std::isfinite(*value) && (r.min_exclusive ? *value > r.min : *value >= r.min) &&
-                        (r.max_exclusive ? *value < r.max : *value <= r.max);
+    const bool in_range = (r.min_exclusive ? *value > r.min : *value >= r.min) &&
+                          (r.max_exclusive ? *value < r.max : *value <= r.max);
+    const bool inside = std::isfinite(*value) && (in_range || (r.off && *value == *r.off));
     if (inside) continue;
-    std::ostringstream message;
-    message.precision(10);
-    message << (e.given_by.empty() ? "[" + e.section + "] " + e.name : e.given_by) << " " << *value << ": expected ";
+    std::ostringstream expected;
+    expected.precision(10);
+    expected << "expected ";
+    if (r.off) expected << *r.off << (r.off_means.empty() ? "" : " (" + r.off_means + ")") << " or ";
     if (r.min_exclusive || r.max_exclusive) {
-      message << (r.min_exclusive ? "> " : ">= ") << r.min << " and " << (r.max_exclusive ? "< " : "<= ") << r.max;
+      expected << (r.min_exclusive ? "> " : ">= ") << r.min << " and " << (r.max_exclusive ? "< " : "<= ") << r.max;
     } else {
-      message << r.min << "-" << r.max;
+      expected << r.min << "-" << r.max;
     }
-    if (!e.unit.empty() && e.unit != "-") message << " " << e.unit;
-    throw InputError(message.str());
+    if (!e.unit.empty() && e.unit != "-") expected << " " << e.unit;
+    throw InputError(where(e.section, e.name) + " " + value_text + ": " + expected.str());
   }
+}
+
+void ParameterTable::require(bool ok, const std::string& section, const std::string& name, const std::string& value,
+                             const std::string& expected) const {
+  if (!ok) throw InputError(where(section, name) + " " + value + ": " + expected);
+}
+
+std::string ParameterTable::where(const std::string& section, const std::string& name) const {
+  for (const auto& e : entries_) {
+    if (e.section == section && e.name == name && !e.given_by.empty()) return e.given_by;
+  }
+  return "[" + section + "] " + name;
 }
 
 bool ParameterTable::given_on_command_line(const std::string& section, const std::string& name) const {
@@ -106,6 +129,10 @@ nlohmann::json ParameterTable::describe() const {
                         {"max", e.range->max},
                         {"min_exclusive", e.range->min_exclusive},
                         {"max_exclusive", e.range->max_exclusive}};
+      if (e.range->off) {
+        entry["range"]["off"] = *e.range->off;
+        entry["range"]["off_means"] = e.range->off_means;
+      }
     }
     out.push_back(std::move(entry));
   }

@@ -15,6 +15,9 @@
 
 namespace talus::cli {
 
+// The most threads a run may be given (`[run] threads`, --threads); 0 asks for all cores.
+inline constexpr double kMaxThreads = 1024;
+
 // A count the program may choose itself: "auto" or a whole number (`[run] runs`, --runs).
 struct CountOrAuto {
   bool automatic = false;
@@ -35,8 +38,14 @@ class ParameterTable {
   // The values a numeric parameter may take (issue 18, item 1), in its unit; a value must also be
   // finite. Printed by `talus params` and checked by check_ranges().
   struct Range {
-    double min = 0, max = 0;
-    bool min_exclusive = false, max_exclusive = false;
+    Range(double min_value, double max_value, bool min_is_exclusive = false, bool max_is_exclusive = false,
+          std::optional<double> off_value = std::nullopt, std::string off_meaning = "")
+        : min(min_value), max(max_value), min_exclusive(min_is_exclusive), max_exclusive(max_is_exclusive),
+          off(off_value), off_means(std::move(off_meaning)) {}
+    double min, max;
+    bool min_exclusive, max_exclusive;
+    std::optional<double> off;  // one more value allowed outside [min, max], e.g. 0,
+    std::string off_means;      // and what it means: "off", "all cores"
   };
   struct Entry {
     std::string section, name, unit, description;
@@ -61,6 +70,12 @@ class ParameterTable {
   // Every value with a range lies in it, or InputError names where it came from, the value and
   // the range: `--runs 0: expected ...`, `F.toml (scenario): [fast_bounce] gravity -9.81: ...`.
   void check_ranges() const;
+  // A rule between values that a range cannot say (merge_threshold below split_threshold): unless
+  // `ok`, InputError naming where the value came from, `value` and `expected`.
+  void require(bool ok, const std::string& section, const std::string& name, const std::string& value,
+               const std::string& expected) const;
+  // How messages name a parameter: its flag, "F.toml (scenario): [section] name" or "[section] name".
+  std::string where(const std::string& section, const std::string& name) const;
   bool given_on_command_line(const std::string& section, const std::string& name) const;
   // Sets the values a TOML table gives by [section] key from `origin`, except those that came
   // from a higher one; unknown sections or keys, retired keys and values of the wrong type are

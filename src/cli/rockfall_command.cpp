@@ -14,6 +14,7 @@
 #include "intensity_layer.hpp"
 #include "number_list.hpp"
 #include "parameter_table.hpp"
+#include "whole_number.hpp"
 #include "run_project.hpp"
 #include "terminal_progress.hpp"
 #include "truncated_trajectories.hpp"
@@ -83,10 +84,12 @@ ParameterTable parameter_table(RockfallOptions& o) {
   table.add("run", "min_runs", "runs", "runs = \"auto\": runs per source before the first convergence test (2 or more)",
             &c.min_runs, Range{2, 1e+09, false, false});
   table.add("run", "max_runs", "runs",
-            "runs = \"auto\": most runs per source (min_runs or more, Range{2, 1e+09, false, false}); a source stops at the last doubling of min_runs "
+            "runs = \"auto\": most runs per source (min_runs or more); a source stops at the last doubling of min_runs "
             "not above it",
-            &c.max_runs);
+            &c.max_runs, Range{2, 1e+09, false, false});
   table.add("run", "seed", "", "seed of the counter-based random numbers", &o.settings.seed);
+  table.add("run", "threads", "", "threads (0: all cores); the layers do not depend on it", &o.settings.threads,
+            Range{1, kMaxThreads, false, false, 0, "all cores"});
   table.add("run", "saved_trajectories", "", "at most this many lines in trajectories.gpkg", &o.settings.saved_trajectories, Range{0, 1e+07, false, false});
   table.add("outputs", "project", "",
             "on: also write project.qgz, hillshade.tif and quicklook/*.png with QGIS (python3-qgis); off: not", &o.project);
@@ -410,29 +413,22 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
   auto* shape = cmd->add_option("--block-shape", o->block_shape, "sphere, ellipsoid or box")->default_val("sphere");
   auto* size = cmd->add_option("--block-size", o->block_size, "Diameter D, or axes A,B,C (m)")->default_val("1");
   auto* density = cmd->add_option("--density", o->settings.rock.density, "Rock density (kg/m3)")->default_val(2700.0);
-  auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(1);
-  cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
+  auto* seed = cmd->add_option("--seed", o->settings.seed, "Random seed")->default_val(1)->check(whole_number());
+  auto* threads = cmd->add_option("--threads", o->settings.threads, "Threads (default: all cores)");
   cmd->add_option("--crs", o->inputs.crs, "CRS of the inputs: EPSG:n, WKT, or local");
   auto* intensity = cmd->add_option("--intensity", o->intensity,
                                     "Intensity classes of intensity.tif: foen-2016 (default), FILE.toml or none");
-  // A run or source number: digits only, so that -1 is refused rather than wrapped to 2^64 - 1.
-  const CLI::Validator whole_number(
-      [](std::string& text) {
-        return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos
-                   ? std::string()
-                   : "expected a whole number, 0 or more, got " + text;
-      },
-      "N");
   cmd->add_option("--only-source", o->settings.only_source,
                   "Simulate only this source (0-based, as source_id in trajectories.gpkg), to reproduce a trajectory")
-      ->check(whole_number);
+      ->check(whole_number());
   cmd->add_option("--only-run", o->settings.only_run, "Simulate only this run of each source (0-based, as run_id)")
-      ->check(whole_number);
+      ->check(whole_number());
   auto* project = cmd->add_option("--project", o->project,
                                   "on (default): also write project.qgz, hillshade.tif and quicklook/*.png with QGIS; off");
-  cmd->callback([o, table, &action, mode, runs, shape, size, density, seed, intensity, project] {
+  cmd->callback([o, table, &action, mode, runs, shape, size, density, seed, threads, intensity, project] {
     const std::pair<CLI::Option*, const char*> flags[] = {{mode, "run.mode"},    {runs, "run.runs"},
-                                                          {seed, "run.seed"},    {shape, "rock.shape"},
+                                                          {seed, "run.seed"},    {threads, "run.threads"},
+                                                          {shape, "rock.shape"},
                                                           {size, "rock.size"},   {density, "rock.density"},
                                                           {intensity, "outputs.intensity"}, {project, "outputs.project"}};
     for (const auto& [option, key] : flags) {

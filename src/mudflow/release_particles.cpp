@@ -80,8 +80,15 @@ void check_particle_count(const GridSpec& spec, const ReleaseSet& release, const
                         std::max(1.0, std::round(spec.cell_height() / layout.spacing));
   if (columns * places > kMostReleasedParticles) {
     std::ostringstream message;
-    message << "mud flow: the release would create " << std::llround(columns * places) << " particles (more than "
-            << std::llround(kMostReleasedParticles) << ") " << layout.spacing
+    const double count = columns * places;
+    message.precision(3);  // in digits up to 10^15, beyond that as 1e+20: no rounding that overflows
+    message << "mud flow: the release would create ";
+    if (count < 1e15) {
+      message << std::llround(count);
+    } else {
+      message << count;
+    }
+    message << " particles (more than " << std::llround(kMostReleasedParticles) << ") " << layout.spacing
             << " m apart: use a larger particle size";
     throw InputError(message.str());
   }

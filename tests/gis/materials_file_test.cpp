@@ -59,8 +59,9 @@ TEST(MaterialsFile, BuiltinTableReadsBackIdentically) {
 
 TEST(MaterialsFile, AwkwardNumbersAndNamesReadBackIdentically) {
   MaterialsTable table;
-  table.lithology = {{-3, "quote \" backslash \\ tab \t newline \n end", 2.0 / 3.0, 0.1 + 0.2, 1e-300,
-                      1.7976931348623157e308, 0.0, 0.1 + 0.7, 1.0, 5e-324, 123456789.125},
+  // Shortest round-trip digits, a subnormal and the ends of the ranges (materials_fields).
+  table.lithology = {{-3, "quote \" backslash \\ tab \t newline \n end", 2.0e9 / 3.0, (0.1 + 0.2) * 1e5, 1e2,
+                      1e13, 0.0, 0.1 + 0.7, 1.0, 5e-324, 1.23456789125},
                      {2147483647, "Gneiß, éboulis", 3e8, 2e6, 2.9e8, 3.1e8, 0.7, 0.45, 0.25, 0.5, 0.1}};
   table.vegetation = {{-2147483647 - 1, "", 0.0}, {7, "aulnaie", 0.012345678901234567}};
   table.default_lithology = 2147483647;
@@ -165,7 +166,7 @@ TEST_P(MaterialsFileError, ThrowsOneLineNamingFileAndProblem) {
     FAIL() << "no error for " << input.name;
   } catch (const InputError& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(path.string() + " (materials): "), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     for (const std::string& fragment : input.expected) {
       EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' not in: " << message;
@@ -202,20 +203,25 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"unloading_below_elastic", "unloading_slope = 6.0e9", "unloading_slope = 4.0e9",
                  {"lithology class 6", "0 < plastic_slope < elastic_slope < unloading_slope"}},
         BadInput{"negative_plastic", "plastic_slope = 7.0e7", "plastic_slope = -7.0e7",
-                 {"lithology class 4", "0 < plastic_slope"}},
+                 {"'plastic_slope' in lithology class 4 = -7.0e7", "expected 100.0 to 1.0e12 Pa/m"}},
         BadInput{"yield", "yield_pressure = 8.0e5", "yield_pressure = 0",
-                 {"lithology class 4", "yield_pressure must be > 0"}},
-        BadInput{"friction", "friction = 0.58", "friction = -0.3", {"lithology class 6", "friction must be >= 0"}},
+                 {"'yield_pressure' in lithology class 4 = 0.0", "expected 100.0 to 1.0e10 Pa"}},
+        BadInput{"friction", "friction = 0.58", "friction = -0.3", {"'friction' in lithology class 6 = -0.3", "expected 0.0 to 10.0"}},
         BadInput{"rolling_friction", "rolling_friction = 0.3", "rolling_friction = -0.1",
-                 {"lithology class 6", "rolling_friction must be >= 0"}},
+                 {"'rolling_friction' in lithology class 6 = -0.1", "expected 0.0 to 10.0"}},
         BadInput{"restitution_normal", "restitution_normal = 0.38", "restitution_normal = 1.2",
-                 {"lithology class 4", "restitution_normal must be within [0, 1]"}},
+                 {"'restitution_normal' in lithology class 4 = 1.2", "expected 0.0 to 1.0"}},
         BadInput{"restitution_tangential", "restitution_tangential = 0.75", "restitution_tangential = -0.1",
-                 {"lithology class 6", "restitution_tangential must be within [0, 1]"}},
+                 {"'restitution_tangential' in lithology class 6 = -0.1", "expected 0.0 to 1.0"}},
         BadInput{"noise", "noise_amplitude = 0.2", "noise_amplitude = -0.2",
-                 {"lithology class 6", "noise_amplitude must be >= 0"}},
+                 {"'noise_amplitude' in lithology class 6 = -0.2", "expected 0.0 to 10.0 m"}},
         BadInput{"deperdition", "deperdition = 0.007", "deperdition = -0.007",
-                 {"vegetation class 3", "deperdition must be >= 0"}},
+                 {"'deperdition' in vegetation class 3 = -0.007", "expected 0.0 to 10.0 1/m"}},
+        BadInput{"huge_elastic", "elastic_slope = 1.0e8", "elastic_slope = 1.0e300",
+                 {"'elastic_slope' in lithology class 4 = 1.0e300", "expected 1000.0 to 1.0e12 Pa/m"}},
+        BadInput{"huge_friction", "friction = 0.58", "friction = 1.0e6", {"'friction' in lithology class 6 = 1.0e6"}},
+        BadInput{"huge_deperdition", "deperdition = 0.007", "deperdition = 5.0e3",
+                 {"'deperdition' in vegetation class 3 = 5000.0", "expected 0.0 to 10.0 1/m"}},
         BadInput{"duplicate_lithology", "code = 6", "code = 4", {"duplicate lithology code 4"}},
         BadInput{"duplicate_vegetation", "code = 3", "code = 0", {"duplicate vegetation code 0"}},
         BadInput{"default_lithology_absent", "default_lithology = 4", "default_lithology = 5",
@@ -234,7 +240,7 @@ TEST(MaterialsFile, MissingFileIsReported) {
     read_materials(path);
     FAIL() << "no error for a missing file";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), path.string() + ": materials file not found");
+    EXPECT_EQ(std::string(e.what()), path.string() + " (materials): materials file not found");
   }
 }
 

@@ -43,6 +43,18 @@ def toml_value(value):
     return '"' + str(value).replace("\\", "\\\\").replace('"', '\\"') + '"'
 
 
+def number_bounds(entry):
+    """The lowest and highest value the dialog accepts: talus's range (issue 18), widened to its
+    'off' value where it has one. QGIS bounds are inclusive; talus itself refuses an excluded end."""
+    allowed = entry.get("range")
+    if not allowed:
+        return {}
+    low, high = allowed["min"], allowed["max"]
+    if "off" in allowed:
+        low, high = min(low, allowed["off"]), max(high, allowed["off"])
+    return {"minValue": low, "maxValue": high}
+
+
 def parameter_key(entry):
     return f"{entry['section']}__{entry['name']}"
 
@@ -114,9 +126,11 @@ class TalusRunAlgorithm(QgsProcessingAlgorithm):
         if isinstance(default, bool):
             return QgsProcessingParameterBoolean(key, label, defaultValue=default)
         if isinstance(default, int):
-            return QgsProcessingParameterNumber(key, label, QgsProcessingParameterNumber.Integer, defaultValue=default)
+            return QgsProcessingParameterNumber(key, label, QgsProcessingParameterNumber.Integer, defaultValue=default,
+                                                **number_bounds(entry))
         if isinstance(default, float):
-            return QgsProcessingParameterNumber(key, label, QgsProcessingParameterNumber.Double, defaultValue=default)
+            return QgsProcessingParameterNumber(key, label, QgsProcessingParameterNumber.Double, defaultValue=default,
+                                                **number_bounds(entry))
         return QgsProcessingParameterString(key, label, defaultValue=str(default))
 
     def _value(self, entry, parameters, context):

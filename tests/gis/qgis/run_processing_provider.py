@@ -22,7 +22,8 @@ sys.path.insert(0, plugins)
 sys.path.insert(0, "/usr/share/qgis/python/plugins")
 
 from qgis.core import (QgsApplication, QgsProcessingContext, QgsProcessingFeedback,  # noqa: E402
-                       QgsProcessingException, QgsProject, QgsRasterLayer, QgsVectorLayer)
+                       QgsProcessingException, QgsProcessingParameterNumber, QgsProject, QgsRasterLayer,
+                       QgsVectorLayer)
 
 app = QgsApplication([], False)
 app.initQgis()
@@ -44,6 +45,15 @@ for command in ("rockfall", "mudflow"):
     missing = [f"{e['section']}__{e['name']}" for e in table[command] if f"{e['section']}__{e['name']}" not in offered]
     if missing:
         problems.append(f"{command}: parameters of talus params not offered: {missing}")
+    # Every range of talus params bounds its number in the dialog (issue 18, item 1).
+    for e in table[command]:
+        definition = algorithm.parameterDefinition(f"{e['section']}__{e['name']}")
+        if "range" not in e or not isinstance(definition, QgsProcessingParameterNumber):
+            continue
+        low = min(e["range"]["min"], e["range"].get("off", e["range"]["min"]))
+        if definition.minimum() != low or definition.maximum() < e["range"]["max"]:
+            problems.append(f"{command}: {definition.name()} bounded {definition.minimum()}-{definition.maximum()}, "
+                            f"not by its range {e['range']}")
 
 
 class Progress(QgsProcessingFeedback):
@@ -81,12 +91,16 @@ with open(os.path.join(out, "run.json"), encoding="utf-8") as run_file:
 if record["parameters"]["run"]["runs"] != 2:
     problems.append(f"run.json runs {record['parameters']['run']['runs']}, not the 2 given")
 
+rockfall_algorithm = QgsApplication.processingRegistry().algorithmById("talus:rockfall")
+if rockfall_algorithm.parameterDefinition("rock__density").checkValueIsAcceptable(50.0):
+    problems.append("the dialog accepts a density of 50 kg/m3, outside its range")
+# An excluded end of a range passes the dialog's inclusive bounds; talus refuses it.
 try:
-    processing.run("talus:rockfall", {"DEM": dem, "RELEASE": release, "rock__density": 50.0,
+    processing.run("talus:rockfall", {"DEM": dem, "RELEASE": release, "run__convergence_tolerance": 0.0,
                                       "OUTPUT": os.path.join(work, "refused")}, context=context, feedback=Progress())
-    problems.append("a density of 50 kg/m3 was not refused")
+    problems.append("a convergence tolerance of 0 was not refused")
 except QgsProcessingException as error:
-    if "talus: error:" not in str(error) or "density" not in str(error):
+    if "talus: error:" not in str(error) or "convergence_tolerance" not in str(error):
         problems.append(f"refusal without talus's error line: {error}")
 
 info = processing.run("talus:info", {"DEM": dem}, context=context, feedback=Progress())

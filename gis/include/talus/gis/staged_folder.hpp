@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 namespace talus::gis {
 
@@ -15,7 +16,8 @@ class StagedFolder {
   // Checks --out (`out`) and creates the staging folder beside it. Throws InputError naming
   // `out` when it is a file, holds files that are not a Talus set (a folder of one is replaced
   // whole), or when its parent cannot be created or written. Removes staging folders that
-  // killed runs left beside `out`.
+  // killed runs left beside `out`. The parent folders it creates are removed again when the set
+  // is never committed, so that a failed run leaves nothing it created.
   explicit StagedFolder(const std::filesystem::path& out);
   ~StagedFolder();  // removes the staging folder of a set that was never committed
   StagedFolder(const StagedFolder&) = delete;
@@ -28,7 +30,9 @@ class StagedFolder {
   void commit();
 
  private:
+  void remove_created_parents() const;  // those still empty, deepest first
   std::filesystem::path out_;
+  std::vector<std::filesystem::path> created_parents_;  // deepest first
   std::filesystem::path staging_;
   bool committed_ = false;
 };
