@@ -46,8 +46,8 @@ constexpr std::array<LithologyNumber, 9> lithology_numbers{{
     {"noise_amplitude", &LithologyClass::noise_amplitude, "m", "m", 0, 10},
 }};
 
-// The vegetation's one number, the deperdition coefficient c (1/m).
-constexpr double kMaxDeperdition = 10.0;
+// The vegetation's one number, the deperdition coefficient c, with its unit and range.
+constexpr MaterialsField kDeperdition{"vegetation", "deperdition", "1/m", "deperdition coefficient c", 0, 10};
 
 constexpr std::array<std::string_view, 4> top_level_keys{"default_lithology", "default_vegetation",
                                                          "lithology", "vegetation"};
@@ -296,9 +296,10 @@ class MaterialsReader {
   VegetationClass vegetation(const toml::table& entry, std::size_t position) const {
     VegetationClass c;
     const std::string where = identify(entry, vegetation_keys, "vegetation", position, c);
-    const toml::node& node = field(entry, "deperdition", where);
-    c.deperdition = number(node, "deperdition", " in " + where);
-    check_range(node, "deperdition", " in " + where, c.deperdition, 0, kMaxDeperdition, "1/m");
+    const toml::node& node = field(entry, kDeperdition.key, where);
+    c.deperdition = number(node, kDeperdition.key, " in " + where);
+    check_range(node, kDeperdition.key, " in " + where, c.deperdition, kDeperdition.min, kDeperdition.max,
+                kDeperdition.unit);
     return c;
   }
 
@@ -311,7 +312,7 @@ const std::vector<MaterialsField>& materials_fields() {
   static const std::vector<MaterialsField> fields = [] {
     std::vector<MaterialsField> out;
     for (const LithologyNumber& n : lithology_numbers) out.push_back({"lithology", n.key, n.unit, n.comment, n.min, n.max});
-    out.push_back({"vegetation", "deperdition", "1/m", "deperdition coefficient c", 0, kMaxDeperdition});
+    out.push_back(kDeperdition);
     return out;
   }();
   return fields;

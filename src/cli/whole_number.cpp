@@ -1,6 +1,7 @@
 // A whole number that an unsigned 64-bit option can hold (whole_number.hpp).
 #include "whole_number.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace talus::cli {
