@@ -19,6 +19,7 @@
 #include "whole_number.hpp"
 #include "run_project.hpp"
 #include "terminal_progress.hpp"
+#include "unfinished_flow.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/layer_writer.hpp"
 #include "talus/gis/particle_snapshot_writer.hpp"
@@ -91,7 +92,7 @@ ParameterTable parameter_table(MudflowOptions& o) {
                 MudflowMaterials::built_in().name_list(),
             &o.material);
   table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density, Range{100, 3000, false, false});
-  table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity, Range{0, 30, true, false});
+  table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity, Range{0.1, 30});
   table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size, Range{0.05, 100, false, false});
   table.add("mud", "release_thickness", "",
             "how a release depth is measured: normal (to the ground, the thin-layer convention) or vertical",
@@ -304,7 +305,10 @@ void record_run(gis::RunRecord& record, const MudflowOptions& o, const gis::Scen
                             {"balance_relative", volume_balance(result)}});
   record.set("history", history_columns(result.history));
   record.set("notes", scene.notes);
-  record.set("problems", scene.problems);
+  std::vector<std::string> problems = scene.problems;
+  const std::vector<std::string> unfinished = unfinished_flow_problems(result, o.settings);
+  problems.insert(problems.end(), unfinished.begin(), unfinished.end());
+  record.set("problems", problems);
 }
 
 // What the run did, in three lines on stdout.
@@ -372,6 +376,7 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   writer.commit();
   if (intensity) std::printf("%s\n", intensity_summary(intensity_entry).c_str());
   print_summary(result, simulate_seconds, o.out);
+  for (const auto& problem : unfinished_flow_problems(result, o.settings)) std::printf("problem: %s\n", problem.c_str());
   if (!project_line.empty()) std::printf("%s\n", project_line.c_str());
   return 0;
 }

@@ -118,37 +118,37 @@ ParameterTable parameter_table(RockfallOptions& o) {
             "rocks at least this large see the materials' noise amplitudes; a smaller rock sees them scaled by its size / this",
             &s.noise_reference_size, Range{0, 100, true, false});
   auto& f = o.fast;
-  table.add("fast_bounce", "gravity", "m/s2", "gravitational acceleration", &f.gravity, Range{0, 100, true, false});
+  table.add("fast_bounce", "gravity", "m/s2", "gravitational acceleration", &f.gravity, Range{0.1, 100});
   table.add("fast_bounce", "air_density", "kg/m3", "air density for drag", &f.air_density, Range{0, 10, false, false});
   table.add("fast_bounce", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &f.drag_coefficient, Range{0, 10, false, false});
   table.add("fast_bounce", "max_time", "s", "simulated time limit per trajectory", &f.max_time, Range{0, 100000, true, false});
-  table.add("fast_bounce", "stop_speed", "m/s", "speed under which a rock held by friction stops", &f.stop_speed, Range{0, 10, true, false});
+  table.add("fast_bounce", "stop_speed", "m/s", "speed under which a rock held by friction stops", &f.stop_speed, Range{1e-4, 10});
   table.add("fast_bounce", "contact_speed", "m/s", "touchdown or rebound normal speed under which the rock rolls or slides",
-            &f.contact_speed, Range{0, 100, true, false});
-  table.add("fast_bounce", "max_step_length", "m", "longest flight path between two ground checks", &f.max_step_length, Range{0, 100, true, false});
-  table.add("fast_bounce", "sample_spacing", "m", "longest path between two recorded samples", &f.sample_spacing, Range{0, 1000, true, false});
-  table.add("fast_bounce", "contact_time_step", "s", "longest step of the rolling/sliding phase", &f.contact_time_step, Range{0, 10, true, false});
+            &f.contact_speed, Range{1e-3, 100});
+  table.add("fast_bounce", "max_step_length", "m", "longest flight path between two ground checks", &f.max_step_length, Range{1e-3, 100});
+  table.add("fast_bounce", "sample_spacing", "m", "longest path between two recorded samples", &f.sample_spacing, Range{0.01, 1000});
+  table.add("fast_bounce", "contact_time_step", "s", "longest step of the rolling/sliding phase", &f.contact_time_step, Range{1e-4, 10});
   table.add("fast_bounce", "contact_tolerance", "m", "ground drop or rise within a contact step that ends it (take-off, shorter step)",
-            &f.contact_tolerance, Range{0, 10, true, false});
+            &f.contact_tolerance, Range{1e-4, 10});
   auto& m = o.full;
-  table.add("full", "gravity", "m/s2", "gravitational acceleration", &m.gravity, Range{0, 100, true, false});
+  table.add("full", "gravity", "m/s2", "gravitational acceleration", &m.gravity, Range{0.1, 100});
   table.add("full", "air_density", "kg/m3", "air density for drag", &m.air_density, Range{0, 10, false, false});
   table.add("full", "drag_coefficient", "-", "Cx of paper 3.2 (0 disables drag)", &m.drag_coefficient, Range{0, 10, false, false});
   table.add("full", "max_time", "s", "simulated time limit per trajectory", &m.max_time, Range{0, 100000, true, false});
   table.add("full", "stop_speed", "m/s", "mean speed of centre and rim over stop_duration under which a rock in contact is at rest",
-            &m.stop_speed, Range{0, 10, true, false});
+            &m.stop_speed, Range{1e-4, 10});
   table.add("full", "stop_duration", "s", "window over which the mean speed is compared with stop_speed", &m.stop_duration, Range{0, 100, true, false});
-  table.add("full", "carpet_spacing", "-", "piston spacing as a fraction of the rock's diameter", &m.carpet_spacing, Range{0, 1, true, false});
-  table.add("full", "time_step_factor", "-", "contact step as a fraction of the stiffest contact period", &m.time_step_factor, Range{0, 1, true, false});
-  table.add("full", "max_flight_step", "s", "longest time step in flight", &m.max_flight_step, Range{0, 10, true, false});
-  table.add("full", "sample_spacing", "m", "longest path between two recorded samples", &m.sample_spacing, Range{0, 1000, true, false});
-  table.add("full", "friction_slip_speed", "m/s", "slip speed below which Coulomb friction is regularised", &m.friction_slip_speed, Range{0, 10, true, false});
+  table.add("full", "carpet_spacing", "-", "piston spacing as a fraction of the rock's diameter", &m.carpet_spacing, Range{0.01, 1});
+  table.add("full", "time_step_factor", "-", "contact step as a fraction of the stiffest contact period", &m.time_step_factor, Range{1e-3, 1});
+  table.add("full", "max_flight_step", "s", "longest time step in flight", &m.max_flight_step, Range{1e-5, 10});
+  table.add("full", "sample_spacing", "m", "longest path between two recorded samples", &m.sample_spacing, Range{0.01, 1000});
+  table.add("full", "friction_slip_speed", "m/s", "slip speed below which Coulomb friction is regularised", &m.friction_slip_speed, Range{1e-4, 10});
   table.add("full", "rolling_resistance", "-", "multiplier of the lithology's rolling friction (0: pure rolling)",
             &m.rolling_resistance, Range{0, 100, false, false});
   table.add("full", "guard", "", "detect blown-up steps and retry them with smaller steps", &m.guard);
   table.add("full", "max_retries", "", "step halvings before a run fails with exit code 3", &m.max_retries, Range{0, 60, false, false});
   table.add("full", "approach_fraction", "-", "per step, a piston top may be approached by this fraction of the spacing beyond its gap",
-            &m.approach_fraction, Range{0, 1, true, false});
+            &m.approach_fraction, Range{0.01, 1});
   table.add("full", "fresh_contact_pistons", "", "a coming contact's stiffness counts this many pistons at k3", &m.fresh_contact_pistons, Range{0, 1e+06, false, false});
   table.add("full", "grazing_cosine", "-",
             "floor of |normal . piston axis| in the piston force; a fragment's piston compresses at most its depth in the rock / this",

@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <optional>
 
+#include "talus/core/errors.hpp"
 #include "talus/rockfall/fast_bounce_impact.hpp"
 #include "talus/rockfall/flight.hpp"
 #include "talus/rockfall/rolling.hpp"
@@ -24,6 +26,11 @@ constexpr double kRiseTolerance = 0.5;       // of contact_tolerance: how closel
 constexpr int kMaxCrossingIterations = 200;
 constexpr double kNodeLineMargin = 1e-4;   // cells: a step ending this close before a node line reached it
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Issue 18, item 4: kStallSteps steps in a row, each advancing the clock by less than
+// kStallStep, are a trajectory that no longer makes progress (the parameters' ranges keep every
+// legitimate step above 1e-6 s; docs/rockfall-fast.md, "Bounded work").
+constexpr double kStallStep = 1e-9;  // s
+constexpr long kStallSteps = 10000;
 
 // Paper 3.3, "Fast Bounce mode", step 1 (collision test), located in time: the last time in
 // [a, b] at which the clearance f is still >= 0, given f(a) = fa >= 0 > f(b) = fb. Illinois
@@ -88,7 +95,11 @@ class FastBounceRun {
 
   StopReason run() {
     std::optional<StopReason> stop = begin();
-    while (!stop) stop = in_flight_ ? flight_step() : contact_step();
+    while (!stop) {
+      const double before = t_;
+      stop = in_flight_ ? flight_step() : contact_step();
+      watch_progress(t_ - before);
+    }
     if (unsampled_) report_sample();
     observer_.on_stop(sample(), *stop);
     return *stop;
@@ -357,6 +368,19 @@ class FastBounceRun {
 
   // --- helpers ------------------------------------------------------------------------------
 
+  // Issue 18, item 4: a trajectory whose steps stopped advancing the clock throws
+  // NumericalFailure (exit code 3, naming the rock's place) instead of looping for ever.
+  void watch_progress(double step) {
+    stalled_steps_ = step < kStallStep ? stalled_steps_ + 1 : 0;
+    if (stalled_steps_ < kStallSteps) return;
+    char message[256];
+    std::snprintf(message, sizeof message,
+                  "fast bounce: the trajectory stalled (%ld steps in a row shorter than %g s) at t = %.6g s, centre "
+                  "(%.3f, %.3f, %.3f) m",
+                  kStallSteps, kStallStep, t_, p_.x(), p_.y(), p_.z());
+    throw NumericalFailure(message);
+  }
+
   // Flight step between ground checks (paper 3.3, step 1; creases of the paper 2.2 surface): at
   // most step_length_ of path, never past the next node line of the DEM (the bilinear surface's
   // creases, where ridges and cliff edges are), within RK4's accuracy bound, no further than the
@@ -446,6 +470,7 @@ class FastBounceRun {
   Eigen::Vector2d restart_xy_ = Eigen::Vector2d::Zero();
   double travelled_ = 0.0;     // m of path since the last sample
   bool unsampled_ = false;     // the state moved since the last sample
+  long stalled_steps_ = 0;     // steps in a row shorter than kStallStep
 };
 
 }  // namespace

@@ -151,6 +151,30 @@ TEST_F(SampleMudflow, RecordsCountsAndConservesVolume) {
   EXPECT_GE(deposit_ratio, 0.7);
 }
 
+// Issue 18, item 4: a flow still moving at [run] duration is reported in run.json's problems and
+// on the terminal, with the particles still flowing and the kinetic energy left; the sample's
+// full run, which ends by the energy criterion, reports none.
+TEST_F(SampleMudflow, AFlowCutShortByTheTimeLimitIsAProblem) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  const nlohmann::json finished = read_json(root_ / "out" / "run.json");
+  EXPECT_EQ(finished["end"]["reason"], "energy");
+  EXPECT_TRUE(finished["problems"].empty()) << finished["problems"].dump();
+
+  const auto root = test::fresh_folder("mudflow_time_limit");
+  const auto cut = test::run_talus(with(sample_arguments(root / "out", "1"), {"--duration", "5"}), root);
+  ASSERT_EQ(cut.exit_code, 0) << cut.err;
+  const nlohmann::json record = read_json(root / "out" / "run.json");
+  EXPECT_EQ(record["end"]["reason"], "duration");
+  ASSERT_EQ(record["problems"].size(), 1u) << record["problems"].dump();
+  const std::string line = record["problems"][0].get<std::string>();
+  const auto flowing = record["history"]["flowing"].back().get<std::size_t>();
+  EXPECT_EQ(line.rfind("mud flow: " + std::to_string(flowing) + " particles were still flowing at the time limit "
+                       "([run] duration = 5 s)", 0), 0u) << line;
+  EXPECT_NE(line.find("raise [run] duration"), std::string::npos) << line;
+  EXPECT_NE(cut.out.find("problem: " + line + "\n"), std::string::npos) << cut.out;
+  fs::remove_all(root);
+}
+
 TEST_F(SampleMudflow, LayersOpenStyledInQgis) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
   std::string arguments = (test::source_dir() / "tests/gis/qgis/check_layer_in_qgis.py").string() + " EPSG:31287";

@@ -53,7 +53,7 @@ TEST(ParameterRanges, TalusParamsCarriesTheRangesAndEveryDefaultLiesInItsRange) 
     return p["section"] == "fast_bounce" && p["name"] == "gravity";
   });
   ASSERT_NE(gravity, rockfall.end());
-  EXPECT_EQ((*gravity)["range"], nlohmann::json({{"min", 0.0}, {"max", 100.0}, {"min_exclusive", true}, {"max_exclusive", false}}));
+  EXPECT_EQ((*gravity)["range"], nlohmann::json({{"min", 0.1}, {"max", 100.0}, {"min_exclusive", false}, {"max_exclusive", false}}));
   const auto& mudflow = all["mudflow"];
   const auto depth = std::find_if(mudflow.begin(), mudflow.end(), [](const nlohmann::json& p) {
     return p["section"] == "mud" && p["name"] == "release_depth";
@@ -72,9 +72,11 @@ TEST(ParameterRanges, RockfallValuesOutsideTheirRangesAreRefusedBeforeAnyWork) {
   };
   const std::vector<Case> cases = {
       // Values that once made a run hang.
-      {"[fast_bounce]\ncontact_tolerance = -0.0\n", {}, "[fast_bounce] contact_tolerance -0: expected > 0 and <= 10 m"},
+      {"[fast_bounce]\nmax_step_length = 1e-9\n", {}, "[fast_bounce] max_step_length 1e-09: expected 0.001-100 m"},
+      {"[full]\ncarpet_spacing = 1e-300\n", {}, "[full] carpet_spacing 1e-300: expected 0.01-1"},
+      {"[fast_bounce]\ncontact_tolerance = -0.0\n", {}, "[fast_bounce] contact_tolerance -0: expected 0.0001-10 m"},
       // Values that once gave all-zero or negative maps.
-      {"[fast_bounce]\nsample_spacing = 0\n", {}, "[fast_bounce] sample_spacing 0: expected > 0 and <= 1000 m"},
+      {"[fast_bounce]\nsample_spacing = 0\n", {}, "[fast_bounce] sample_spacing 0: expected 0.01-1000 m"},
       // Misreported before: the scenario's key is named, not a flag.
       {"", {"--density", "50"}, "--density 50: expected 500-6000 kg/m3"},
       // Integers that would wrap around.

@@ -5,10 +5,12 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
 #include "../../validation/synthetic_ground.hpp"
+#include "talus/core/errors.hpp"
 #include "talus/ground/perlin_noise.hpp"
 
 namespace talus {
@@ -71,6 +73,26 @@ TEST(FastBounce, StopsAtMaxTime) {
       FastBounce(parameters).run(ground, sphere(), at(ground, 70.0, -70.0, 40.0, Eigen::Vector3d::Zero()), recorder);
   EXPECT_EQ(reason, StopReason::max_time);
   EXPECT_NEAR(recorder.final_sample.time, 0.75, 1e-12);
+}
+
+// Issue 18, item 4: steps that no longer advance the clock (here a 1e-13 m flight path between
+// ground checks, below what the parameter's range allows, at 10 m/s: 1e-14 s per step, which
+// would take 3e16 steps to reach max_time) end the trajectory with NumericalFailure, naming the
+// stall, instead of spinning.
+TEST(FastBounce, AStalledTrajectoryIsANumericalFailureNotAnEndlessLoop) {
+  const GroundModel model = plane(0.5, testing_ground::fast_material(0.5, 0.8, 0.5));
+  const PerturbedGround ground(model, nullptr);
+  FastBounceParameters parameters;
+  parameters.max_step_length = 1e-13;
+  Recorder recorder;
+  try {
+    FastBounce(parameters).run(ground, sphere(), at(ground, 70.0, -70.0, 20.0, {10.0, 0.0, 0.0}), recorder);
+    ADD_FAILURE() << "the stalled trajectory ended normally";
+  } catch (const NumericalFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("the trajectory stalled (10000 steps in a row shorter than 1e-09 s)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(FastBounce, ReportsReleaseSamplesEverySpacingAndTheStop) {
