@@ -145,7 +145,10 @@ void ParameterTable::apply(const toml::table& sections, Origin origin, const std
     const toml::table* section_table = section_node.as_table();
     const bool known_section = std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.section == section; });
     if (section_table == nullptr || !known_section) throw InputError(source + ": unknown section [" + section + "]");
-    for (const auto& [key, node] : *section_table) {
+    for (const auto& item : *section_table) {
+      // Named, not a structured binding: clang 14 cannot capture those in the lambda below.
+      const toml::key& key = item.first;
+      const toml::node& node = item.second;
       const std::string where = "[" + section + "] " + std::string(key.str());
       const auto retired = std::find_if(retired_.begin(), retired_.end(),
                                         [&](const RetiredKey& r) { return r.section == section && r.name == key.str(); });
