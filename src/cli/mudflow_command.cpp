@@ -327,15 +327,29 @@ void print_summary(const MudflowResult& result, double simulate_seconds, const s
 }
 
 // Resolves and checks the parameters, reads the scene, runs the flow and writes the layer set.
-int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_given) {
+// What a run chose besides its numbers: the intensity classes and whether it writes a project.
+struct RunChoices {
+  std::optional<IntensityScheme> intensity;
+  bool project = true;
+};
+
+// The scenario file, the material preset and the flags resolved into `o`, every parameter
+// checked: what a run does before it reads any input.
+RunChoices resolve_parameters(MudflowOptions& o, ParameterTable& table, bool adaptive_given) {
   // The scenario file sets every parameter it names, except those given as flags; the material
   // preset then sets those that neither gives.
   if (!o.scenario.empty()) table.apply_scenario(o.scenario, {});
   apply_material(o, table);
   if (adaptive_given) o.settings.adaptive = parse_on_off(o.adaptive);
   validate(o, table);
-  const std::optional<IntensityScheme> intensity = chosen_intensity(o.intensity, "mudflow", hazard_layers(FlowLayers{}));
-  const bool project = project_wanted(o.project);
+  RunChoices choices;
+  choices.intensity = chosen_intensity(o.intensity, "mudflow", hazard_layers(FlowLayers{}));
+  choices.project = project_wanted(o.project);
+  return choices;
+}
+
+int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_given) {
+  const auto [intensity, project] = resolve_parameters(o, table, adaptive_given);
   // The output folder is checked and staged before any work (issue 18, item 3).
   gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "mud flow"}, {"TALUS_SCENARIO", scenario_text(o)}});
 
@@ -443,6 +457,13 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
     const bool adaptive_given = adaptive->count() > 0;
     action = [o, table, adaptive_given] { return run_mudflow_command(*o, *table, adaptive_given); };
   });
+}
+
+void check_mudflow_scenario(const std::filesystem::path& scenario) {
+  MudflowOptions o;
+  o.scenario = scenario;
+  ParameterTable table = parameter_table(o);
+  resolve_parameters(o, table, false);
 }
 
 nlohmann::json mudflow_parameters() {

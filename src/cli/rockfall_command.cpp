@@ -269,7 +269,15 @@ void validate_runs(RockfallOptions& o) {
   }
 }
 
-int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
+// What a run chose besides its numbers: the intensity classes and whether it writes a project.
+struct RunChoices {
+  std::optional<IntensityScheme> intensity;
+  bool project = true;
+};
+
+// The scenario file and the flags resolved into `o`, every parameter checked: what a run does
+// before it reads any input.
+RunChoices resolve_parameters(RockfallOptions& o, ParameterTable& table) {
   // The scenario file sets every parameter it names, except those given as flags (pinned).
   if (!o.scenario.empty()) table.apply_scenario(o.scenario, {});
   if (o.mode != "fast" && o.mode != "full") throw InputError("--mode " + o.mode + ": use fast or full");
@@ -293,8 +301,14 @@ int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
     throw InputError("[rock] fracture_strength " + std::to_string(o.fracture_strength) + ": expected a force > 0 kN");
   }
   o.full.fracture_strength = 1000.0 * o.fracture_strength;
-  const std::optional<IntensityScheme> intensity = chosen_intensity(o.intensity, "rockfall", hazard_layers(RockfallLayers{}));
-  const bool project = project_wanted(o.project);
+  RunChoices choices;
+  choices.intensity = chosen_intensity(o.intensity, "rockfall", hazard_layers(RockfallLayers{}));
+  choices.project = project_wanted(o.project);
+  return choices;
+}
+
+int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
+  const auto [intensity, project] = resolve_parameters(o, table);
   // The output folder is checked and staged before any work (issue 18, item 3).
   gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", scenario_text(o)}});
 
@@ -438,6 +452,13 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
     }
     action = [o, table] { return run_rockfall_command(*o, *table); };
   });
+}
+
+void check_rockfall_scenario(const std::filesystem::path& scenario) {
+  RockfallOptions o;
+  o.scenario = scenario;
+  ParameterTable table = parameter_table(o);
+  resolve_parameters(o, table);
 }
 
 nlohmann::json rockfall_parameters() {
