@@ -4,16 +4,18 @@
 # finding (crash, sanitizer report, uncaught exception other than InputError, leak, timeout,
 # memory beyond the limit), whose reproducer is left in build-fuzz/findings/. See
 # docs/fuzzing.md. FUZZ_SECONDS: seconds per target (default 20); FUZZ_TARGETS: which targets
-# (default all).
+# (default all); FUZZ_JOBS: compile jobs and targets at a time (default: the cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-20}
-jobs=$(nproc)
+jobs=${FUZZ_JOBS:-$(nproc)}
 read -r -a targets <<<"${FUZZ_TARGETS:-scenario materials intensity raster release}"
 
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
       -DTALUS_FUZZ=ON -DTALUS_BUILD_TESTS=OFF -DTALUS_BUILD_BENCH=OFF >/dev/null
 cmake --build build-fuzz -j"$jobs" --target talus_fuzzers
+built=$SECONDS
+echo "fuzz: targets built in $built s"
 
 # Each target on its own copy of the corpus (new inputs go there, not into tests/), at most
 # $jobs at a time; its exit status lands in build-fuzz/<target>.status.
@@ -30,6 +32,7 @@ for target in "${targets[@]}"; do
   run_target "$target" &
 done
 wait
+echo "fuzz: targets run in $((SECONDS - built)) s"
 failed=()
 for target in "${targets[@]}"; do
   log=build-fuzz/$target.log

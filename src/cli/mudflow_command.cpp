@@ -14,7 +14,9 @@
 
 #include "commands.hpp"
 #include "intensity_layer.hpp"
+#include "mudflow_layers.hpp"
 #include "mudflow_materials.hpp"
+#include "mudflow_parameters.hpp"
 #include "parameter_table.hpp"
 #include "whole_number.hpp"
 #include "run_project.hpp"
@@ -29,27 +31,6 @@
 
 namespace talus::cli {
 namespace {
-
-struct MudflowOptions {
-  gis::SceneInputs inputs;
-  std::filesystem::path out;
-  std::filesystem::path scenario;
-  std::string material = MudflowMaterials::built_in().default_name();  // --material, [mud] material
-  std::string rheology = to_string(RheologyParameters{}.rheology);
-  std::string adaptive = "on";  // --adaptive on|off, into settings.adaptive
-  std::string release_thickness = to_string(ReleaseThickness::normal);  // into settings.release_thickness
-  double release_depth = 0;            // m: --depth, [mud] release_depth; 0: the release file's depths
-  std::string depth_field = "depth";   // --depth-field, [mud] depth_field
-  std::string snapshot_start = gis::kDefaultSnapshotStart;  // --start-time, [outputs] snapshot_start
-  std::int64_t snapshot_start_seconds = 0;                  // s after 1970-01-01, from snapshot_start
-  std::string project = "on";  // --project on|off, [outputs] project
-  std::string intensity = kDefaultIntensity;                // --intensity, [outputs] intensity
-  MudflowSettings settings;
-  std::vector<std::string> command_line;
-};
-
-// Particle snapshots: the most a run writes.
-constexpr double kMaxSnapshots = 100000.0;
 
 // The parameters that have a command-line flag: a flag given pins its parameter against the
 // scenario file, and messages about the parameter name the flag.
@@ -66,153 +47,6 @@ constexpr Flag kFlags[] = {{"run", "duration", "--duration"},       {"run", "see
                            {"outputs", "snapshot_start", "--start-time"}, {"outputs", "intensity", "--intensity"},
                            {"outputs", "project", "--project"}};
 
-// Every MudflowSettings field (mudflow_simulation.hpp, rheology.hpp) as a scenario parameter.
-ParameterTable parameter_table(MudflowOptions& o) {
-  using Range = ParameterTable::Range;  // the allowed values, in the unit (issue 18, item 1)
-  ParameterTable table;
-  auto& s = o.settings;
-  table.add("run", "duration", "s", "longest simulated time", &s.duration, Range{0, 86400, true, false});
-  table.add("run", "stop_energy_fraction", "-", "the run ends when the kinetic energy falls below this fraction of its peak",
-            &s.stop_energy_fraction, Range{0, 1, false, true});
-  table.add("run", "seed", "", "seed of the jitter of the particles' initial places", &s.seed);
-  table.add("run", "threads", "", "threads (0: all cores); the layers do not depend on it", &s.threads,
-            Range{1, kMaxThreads, false, false, 0, "all cores"});
-  table.add("run", "parallel_particles", "", "loops over fewer particles than this run on one thread", &s.parallel_particles, Range{1, 1e9, false, false});
-  table.add("run", "parallel_check_period", "",
-            "coarse steps between timed trials of one thread against all threads for the particle loops, which then "
-            "run the faster way (0: always all threads); the layers do not depend on it",
-            &s.parallel_check_period, Range{3, 1e9, false, false, 0, "always all threads"});
-  table.add("run", "interleaved_particles", "",
-            "threads with at least this many particles to evaluate compute each particle's forces as soon as the "
-            "densities they read are done, while its neighbour list is in the cache; fewer: all densities first; the "
-            "layers do not depend on it",
-            &s.interleaved_particles, Range{1, 1e9, false, false});
-  table.add("mud", "material", "",
-            "material preset that sets the rheology, its parameters and the density before the scenario's own keys: " +
-                MudflowMaterials::built_in().name_list(),
-            &o.material);
-  table.add("mud", "density", "kg/m3", "bulk density of the mud rho0", &s.mud_density, Range{100, 3000, false, false});
-  table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity, Range{0.1, 30});
-  table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size, Range{0.05, 100, false, false});
-  table.add("mud", "release_thickness", "",
-            "how a release depth is measured: normal (to the ground, the thin-layer convention) or vertical",
-            &o.release_thickness);
-  table.add("mud", "release_depth", "m",
-            "one release depth for every release cell, polygon and point, whatever the release file holds (0: the "
-            "file's depths)",
-            &o.release_depth, Range{0.01, gis::kMaxReleaseDepth, false, false, 0, "the release file's depths"});
-  table.add("mud", "depth_field", "", "the attribute of a vector release that holds each feature's depth (m)",
-            &o.depth_field);
-  table.add("adaptivity", "adaptive", "", "particle fission and fusion and individual time steps (paper 4.2)", &s.adaptive);
-  table.add("adaptivity", "coarse_levels", "",
-            "particle sizes are particle_size x 2^k, k = 0..coarse_levels; the release uses the coarsest", &s.coarse_levels, Range{0, 8, false, false});
-  table.add("adaptivity", "split_threshold", "-", "a particle splits when its size x |grad P| / P exceeds this",
-            &s.split_threshold, Range{0, 100, true, false});
-  table.add("adaptivity", "merge_threshold", "-", "a calm group merges when each member's size x |grad P| / P is below this",
-            &s.merge_threshold, Range{0, 100, false, true});
-  table.add("adaptivity", "merge_speed", "m/s", "and its members' velocities differ by less than this", &s.merge_speed, Range{0, 100, false, false});
-  table.add("time_steps", "courant", "-",
-            "C in dt = C min(s / (c + w), sqrt(s / |a|)), w the fastest closing speed of a neighbour", &s.courant, Range{0, 1, true, false});
-  table.add("time_steps", "cells_per_step", "-", "a particle's step crosses at most this many DEM cells",
-            &s.cells_per_step, Range{0, 10, true, false});
-  table.add("time_steps", "longest_step", "s", "step of level 0; level k steps are longest_step / 2^k", &s.longest_step, Range{0.001, 10, false, false});
-  table.add("time_steps", "deepest_level", "", "deepest step level", &s.deepest_level, Range{0, 30, false, false});
-  table.add("time_steps", "guard", "", "detect blown-up steps and retry them with halved steps", &s.guard);
-  table.add("time_steps", "max_retries", "", "step halvings before a run fails with exit code 3", &s.max_retries, Range{0, 20, false, false});
-  table.add("time_steps", "unguarded_step", "s", "> 0: one global step that ignores the Courant condition (tests of the guard)",
-            &s.unguarded_step, Range{1e-4, 10, false, false, 0, "off"});
-  table.add("contact", "curvature", "",
-            "the basal normal stress includes the centripetal term rho0 h u^2 kappa of the ground's curvature", &s.curvature);
-  table.add("contact", "curvature_span", "m",
-            "kappa is measured between the ground normals this far apart along the velocity (at least one DEM cell and "
-            "the particle's spacing)",
-            &s.curvature_span, Range{0, 1000, false, false});
-  auto& r = s.rheology;
-  table.add("rheology", "rheology", "", "basal resistance: viscous, coulomb, voellmy or bingham", &o.rheology);
-  table.add("rheology", "friction", "-", "Coulomb friction coefficient mu of the basal resistance (coulomb, voellmy)",
-            &r.friction, Range{0, 1, false, false});
-  table.retire("rheology", "friction_factor",
-               "no longer used: give [rheology] friction, the friction coefficient mu itself (0-1); the lithology no "
-               "longer sets the mud's friction");
-  table.add("rheology", "turbulence", "m/s2", "turbulence coefficient xi of Voellmy", &r.turbulence, Range{0, 1e6, true, false});
-  table.add("rheology", "viscosity", "Pa s", "dynamic viscosity eta (viscous and Bingham)", &r.viscosity, Range{0, 1e9, false, false});
-  table.add("rheology", "yield_stress", "Pa", "yield stress tau_y of Bingham", &r.yield_stress, Range{0, 1e7, false, false});
-  table.add("rheology", "internal_viscosity", "m2/s", "kinematic viscosity of the internal friction between particles",
-            &r.internal_viscosity, Range{0, 1e4, false, false});
-  table.add("deposition", "stop_speed", "m/s", "mud slower than this for stop_duration, and held by the bed, deposits",
-            &s.stop_speed, Range{0, 100, false, false});
-  table.add("deposition", "stop_duration", "s", "how long the mud must stay slower than stop_speed", &s.stop_duration, Range{0, 86400, false, false});
-  table.add("entrainment", "rate", "1/m", "entrainment rate E: the bed erodes at E h |u| (m/s) where erodible material lies",
-            &s.entrainment_rate, Range{0, 10, false, false});
-  table.add("outputs", "arrival_depth", "m", "a cell is reached when its flow depth first exceeds this", &s.arrival_depth, Range{0, 100, true, false});
-  table.add("outputs", "map_interval", "s", "flow depth, velocity and pressure maxima are sampled this often",
-            &s.map_interval, Range{0.01, 3600, false, false});
-  table.add("outputs", "snapshot_interval", "s", "> 0: particles.gpkg holds the particles this often", &s.snapshot_interval, Range{0.01, 86400, false, false, 0, "none"});
-  table.add("outputs", "project", "",
-            "on: also write project.qgz, hillshade.tif and quicklook/*.png with QGIS (python3-qgis); off: not", &o.project);
-  table.add("outputs", "intensity", "",
-            "intensity classes of intensity.tif: a built-in guideline (foen-2016), a guideline file FILE.toml, or none",
-            &o.intensity);
-  table.add("outputs", "snapshot_start", "",
-            "date-time of the release on particles.gpkg's clock, YYYY-MM-DDTHH:MM:SS (no time zone)", &o.snapshot_start);
-  return table;
-}
-
-// A number as a user typed it: "0", "2.5", "1e-05".
-std::string number_text(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
-// --adaptive on|off.
-bool parse_on_off(const std::string& text) {
-  if (text == "on") return true;
-  if (text == "off") return false;
-  throw InputError("--adaptive " + text + ": use on or off");
-}
-
-// The material preset named by --material, the scenario's [mud] material or the default, under
-// the scenario's own keys and the flags (docs/mudflow.md, "Materials").
-void apply_material(const MudflowOptions& o, ParameterTable& table) {
-  const MudflowMaterials& materials = MudflowMaterials::built_in();
-  table.require(materials.contains(o.material), "mud", "material", o.material,
-                "expected one of " + materials.name_list());
-  materials.apply(o.material, table);
-}
-
-// Every parameter within its range (the table's data, docs/mudflow.md), then the choices and the
-// rules between values that a range cannot say.
-void validate(MudflowOptions& o, const ParameterTable& table) {
-  table.check_ranges();
-  const auto& s = o.settings;
-  const std::string rheology = o.rheology;
-  table.require(rheology == "viscous" || rheology == "coulomb" || rheology == "voellmy" || rheology == "bingham", "rheology",
-                "rheology", rheology, "use viscous, coulomb, voellmy or bingham");
-  o.settings.rheology.rheology = parse_rheology(rheology);
-  table.require(o.release_thickness == "normal" || o.release_thickness == "vertical", "mud", "release_thickness",
-                o.release_thickness, "use normal or vertical");
-  o.settings.release_thickness = parse_release_thickness(o.release_thickness);
-  table.require(!o.depth_field.empty(), "mud", "depth_field", o.depth_field, "expected an attribute name");
-  table.require(o.release_depth == 0.0 || o.depth_field == "depth", "mud", "depth_field", o.depth_field,
-                "give either a depth attribute or one release depth, not both");
-  o.inputs.release_depth.field = o.depth_field;
-  if (o.release_depth > 0.0) o.inputs.release_depth.uniform = o.release_depth;
-  table.require(s.merge_threshold < s.split_threshold, "adaptivity", "merge_threshold", number_text(s.merge_threshold),
-                "expected a ratio below split_threshold " + number_text(s.split_threshold));
-  // At most kMaxSnapshots in the run, so that a tiny interval is refused now, not after the whole
-  // flow when particles.gpkg is written (issue 18).
-  table.require(s.snapshot_interval == 0.0 || s.duration / s.snapshot_interval <= kMaxSnapshots, "outputs",
-                "snapshot_interval", number_text(s.snapshot_interval), "expected at most 100000 snapshots over --duration");
-  const bool snapshots_flag = table.given_on_command_line("outputs", "snapshot_interval");
-  table.require(!snapshots_flag || s.snapshot_interval > 0.0, "outputs", "snapshot_interval",
-                number_text(s.snapshot_interval), "expected an interval of at least 0.01 s");
-  const std::optional<std::int64_t> start = gis::parse_snapshot_start(o.snapshot_start);
-  table.require(start.has_value(), "outputs", "snapshot_start", o.snapshot_start,
-                "expected a date-time YYYY-MM-DDTHH:MM:SS, years 1000-9999");
-  o.snapshot_start_seconds = *start;
-}
-
 // The run in one line, for the TALUS_SCENARIO metadata of every layer.
 std::string scenario_text(const MudflowOptions& o) {
   const auto& s = o.settings;
@@ -221,20 +55,6 @@ std::string scenario_text(const MudflowOptions& o) {
        << (s.adaptive ? "on" : "off") << ", duration " << s.duration << " s, density " << s.mud_density
        << " kg/m3, seed " << s.seed;
   return text.str();
-}
-
-// The mud-flow layers of DESIGN.md section 3 with their band descriptions and units; erosion_depth
-// only when the run has erodible material.
-HazardLayers hazard_layers(const FlowLayers& layers) {
-  HazardLayers out = {
-      {&layers.flow_depth_max, {"flow_depth_max", "Maximum flow depth", "m"}},
-      {&layers.velocity_max, {"velocity_max", "Maximum velocity", "m/s"}},
-      {&layers.pressure_max, {"pressure_max", "Maximum impact pressure", "kPa"}},
-      {&layers.deposit_depth, {"deposit_depth", "Deposit depth", "m"}},
-      {&layers.arrival_time,
-       {"arrival_time", "Arrival time of the flow", "s", gis::OverviewReduction::earliest_positive}}};
-  if (layers.erosion_depth) out.push_back({&*layers.erosion_depth, {"erosion_depth", "Eroded depth", "m"}});
-  return out;
 }
 
 // Wall-clock seconds since `start`.
@@ -327,29 +147,8 @@ void print_summary(const MudflowResult& result, double simulate_seconds, const s
 }
 
 // Resolves and checks the parameters, reads the scene, runs the flow and writes the layer set.
-// What a run chose besides its numbers: the intensity classes and whether it writes a project.
-struct RunChoices {
-  std::optional<IntensityScheme> intensity;
-  bool project = true;
-};
-
-// The scenario file, the material preset and the flags resolved into `o`, every parameter
-// checked: what a run does before it reads any input.
-RunChoices resolve_parameters(MudflowOptions& o, ParameterTable& table, bool adaptive_given) {
-  // The scenario file sets every parameter it names, except those given as flags; the material
-  // preset then sets those that neither gives.
-  if (!o.scenario.empty()) table.apply_scenario(o.scenario, {});
-  apply_material(o, table);
-  if (adaptive_given) o.settings.adaptive = parse_on_off(o.adaptive);
-  validate(o, table);
-  RunChoices choices;
-  choices.intensity = chosen_intensity(o.intensity, "mudflow", hazard_layers(FlowLayers{}));
-  choices.project = project_wanted(o.project);
-  return choices;
-}
-
 int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_given) {
-  const auto [intensity, project] = resolve_parameters(o, table, adaptive_given);
+  const auto [intensity, project] = resolve_mudflow_parameters(o, table, adaptive_given);
   // The output folder is checked and staged before any work (issue 18, item 3).
   gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "mud flow"}, {"TALUS_SCENARIO", scenario_text(o)}});
 
@@ -374,7 +173,7 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
   const double simulate_seconds = seconds_since(simulate_start);
 
   const auto write_start = std::chrono::steady_clock::now();
-  const nlohmann::json intensity_entry = write_layers_with_intensity(writer, hazard_layers(result.layers), intensity);
+  const nlohmann::json intensity_entry = write_layers_with_intensity(writer, mudflow_hazard_layers(result.layers), intensity);
   if (o.settings.snapshot_interval > 0.0) {
     gis::add_particle_snapshots(writer, result.snapshots, o.settings.snapshot_interval, ground.spec().crs_wkt,
                                 o.snapshot_start_seconds);
@@ -400,7 +199,7 @@ int run_mudflow_command(MudflowOptions& o, ParameterTable& table, bool adaptive_
 void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line) {
   auto o = std::make_shared<MudflowOptions>();
   o->command_line = command_line;
-  auto table = std::make_shared<ParameterTable>(parameter_table(*o));
+  auto table = std::make_shared<ParameterTable>(mudflow_parameter_table(*o));
   CLI::App* cmd = app.add_subcommand("mudflow", "Adaptive smoothed-particle mud flow and its hazard layers");
   cmd->add_option("--dem", o->inputs.dem, "DEM raster (elevations in metres)")->required();
   cmd->add_option("--release", o->inputs.release,
@@ -458,21 +257,5 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
     action = [o, table, adaptive_given] { return run_mudflow_command(*o, *table, adaptive_given); };
   });
 }
-
-void check_mudflow_scenario(const std::filesystem::path& scenario) {
-  MudflowOptions o;
-  o.scenario = scenario;
-  ParameterTable table = parameter_table(o);
-  resolve_parameters(o, table, false);
-}
-
-nlohmann::json mudflow_parameters() {
-  MudflowOptions defaults;
-  ParameterTable table = parameter_table(defaults);
-  apply_material(defaults, table);
-  return table.describe();
-}
-
-nlohmann::json mudflow_materials() { return MudflowMaterials::built_in().describe(); }
 
 }  // namespace talus::cli

@@ -4,6 +4,8 @@
 
 #include "commands.hpp"
 #include "intensity_guidelines.hpp"
+#include "mudflow_parameters.hpp"
+#include "rockfall_parameters.hpp"
 #include "talus/gis/materials_file.hpp"
 
 namespace talus::cli {

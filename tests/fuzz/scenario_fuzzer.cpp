@@ -5,8 +5,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "commands.hpp"
 #include "fuzz_input.hpp"
+#include "mudflow_parameters.hpp"
+#include "rockfall_parameters.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto scenario = talus::fuzz::fuzz_folder().write("scenario.toml", data, size);
