@@ -4,10 +4,13 @@
 # finding (crash, sanitizer report, uncaught exception other than InputError, leak, timeout,
 # memory beyond the limit), whose reproducer is left in build-fuzz/findings/. See
 # docs/fuzzing.md. FUZZ_SECONDS: seconds per target (default 20); FUZZ_TARGETS: which targets
-# (default all); FUZZ_JOBS: compile jobs and targets at a time (default: the cores).
+# (default all); FUZZ_JOBS: compile jobs and targets at a time (default: the cores); FUZZ_SEED:
+# libFuzzer's seed (default 1, so that CI tries the same inputs in the same order every time and a
+# slower machine tries a prefix of them; another seed explores further).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-20}
+seed=${FUZZ_SEED:-1}
 jobs=${FUZZ_JOBS:-$(nproc)}
 read -r -a targets <<<"${FUZZ_TARGETS:-scenario materials intensity raster release}"
 
@@ -23,7 +26,7 @@ run_target() {
   local target=$1 work=build-fuzz/corpus/$1 status=0
   rm -rf "$work" && mkdir -p "$work" build-fuzz/findings
   UBSAN_OPTIONS=print_stacktrace=1 "build-fuzz/fuzzers/${target}_fuzzer" "$work" "tests/fuzz/corpus/$target" \
-    -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
+    -seed="$seed" -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="build-fuzz/findings/${target}-" >"build-fuzz/${target}.log" 2>&1 || status=$?
   echo "$status" >"build-fuzz/${target}.status"
 }

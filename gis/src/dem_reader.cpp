@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <gdal_alg.h>
 #include <gdal_utils.h>
 #include <ogr_spatialref.h>
 
@@ -56,9 +57,46 @@ int utm_epsg_for(const GridSpec& spec) {
   return (lat >= 0 ? 32600 : 32700) + zone;
 }
 
+// At most this many times the input's cells in the reprojected grid: a DEM in degrees that grows
+// more than that in UTM spans too much of the Earth for one zone (docs/inputs.md, "DEM").
+constexpr double kLargestReprojectionGrowth = 4.0;
+
+// Refuses a reprojection whose grid (GDAL's suggested output, computed before any warping) would
+// hold more than kLargestReprojectionGrowth times the input's cells.
+void require_bounded_reprojection(GDALDataset& source, const std::string& name, const std::string& target) {
+  OGRSpatialReference utm;
+  utm.SetFromUserInput(target.c_str());
+  char* utm_wkt = nullptr;
+  utm.exportToWkt(&utm_wkt);
+  const std::string destination = "DST_SRS=" + std::string(utm_wkt);
+  CPLFree(utm_wkt);
+  const char* options[] = {destination.c_str(), nullptr};
+  void* transformer = GDALCreateGenImgProjTransformer2(GDALDataset::ToHandle(&source), nullptr,
+                                                       const_cast<char**>(options));
+  if (transformer == nullptr) throw InputError(name + ": reprojection to " + target + " failed: " + last_gdal_error("GDAL error"));
+  double geotransform[6];
+  int width = 0, height = 0;
+  const CPLErr status = GDALSuggestedWarpOutput(GDALDataset::ToHandle(&source), GDALGenImgProjTransform, transformer,
+                                                geotransform, &width, &height);
+  GDALDestroyGenImgProjTransformer(transformer);
+  if (status != CE_None) throw InputError(name + ": reprojection to " + target + " failed: " + last_gdal_error("GDAL error"));
+  const double input = static_cast<double>(source.GetRasterXSize()) * source.GetRasterYSize();
+  const double output = static_cast<double>(width) * height;
+  if (output > kLargestReprojectionGrowth * input) {
+    std::ostringstream message;
+    message.precision(3);
+    message << name << ": in degrees, reprojected to " << target << " it would need " << width << " x " << height
+            << " cells, " << output / input << " times its own " << source.GetRasterXSize() << " x "
+            << source.GetRasterYSize() << ": it spans too much of the Earth for one UTM zone; reproject it to a "
+            << "projected CRS in metres first (gdalwarp -t_srs EPSG:nnnn)";
+    throw InputError(message.str());
+  }
+}
+
 // Reprojects a geographic dataset to a UTM zone in memory (bilinear, square cells).
 GDALDatasetUniquePtr reproject_to_utm(GDALDataset& source, const std::string& name, int epsg) {
   const std::string target = "EPSG:" + std::to_string(epsg);
+  require_bounded_reprojection(source, name, target);
   const char* arguments[] = {"-of", "MEM", "-t_srs", target.c_str(), "-r", "bilinear", "-dstnodata", "-9999", nullptr};
   GDALWarpAppOptions* options = GDALWarpAppOptionsNew(const_cast<char**>(arguments), nullptr);
   GDALDatasetH source_handle = GDALDataset::ToHandle(&source);

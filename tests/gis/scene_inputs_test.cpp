@@ -140,6 +140,24 @@ TEST(DemReader, ReprojectsAGeographicDemToItsUtmZone) {
   EXPECT_LT(input.elevation.spec().cell_width(), 12.0);
 }
 
+// Issue 18, item 5: the raster fuzzer's finding, a DEM of 4 x 53,764 cells in degrees (53 degrees
+// of latitude, one byte changed from a seed), that GDAL's warp would have made 640 x 53,760 cells
+// in UTM (25 s and 3.7 GB): refused before any warping, with the growth named.
+TEST(DemReader, RefusesAGeographicDemThatReprojectionWouldMultiply) {
+  const auto path = test::source_dir() / "tests/fuzz/corpus/raster/finding-dem-degrees-53-degrees-tall.tif";
+  try {
+    read_dem(path, CrsOption{});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(path.string(), 0), 0u) << message;
+    EXPECT_NE(message.find(": in degrees, reprojected to EPSG:32632 it would need 640 x 53760 cells"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("160 times its own 4 x 53764"), std::string::npos) << message;
+    EXPECT_NE(message.find("gdalwarp -t_srs"), std::string::npos) << message;
+  }
+}
+
 TEST(DemReader, RefusesElevationsInFeet) {
   const auto folder = test::fresh_folder("feet_dem");
   RasterFixture dem;
