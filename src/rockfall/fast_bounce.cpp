@@ -27,8 +27,8 @@ constexpr int kMaxCrossingIterations = 200;
 constexpr double kNodeLineMargin = 1e-4;   // cells: a step ending this close before a node line reached it
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Issue 18, item 4: kStallSteps steps in a row, each advancing the clock by less than
-// kStallStep, are a trajectory that no longer makes progress (the parameters' ranges keep every
-// legitimate step above 1e-6 s; docs/rockfall-fast.md, "Bounded work").
+// kStallStep, are a trajectory that no longer makes progress (within the parameters' ranges no
+// legitimate run of steps is that short; docs/rockfall-fast.md, "Bounded work").
 constexpr double kStallStep = 1e-9;  // s
 constexpr long kStallSteps = 10000;
 
