@@ -64,12 +64,7 @@ constexpr double kLargestReprojectionGrowth = 4.0;
 // Refuses a reprojection whose grid (GDAL's suggested output, computed before any warping) would
 // hold more than kLargestReprojectionGrowth times the input's cells.
 void require_bounded_reprojection(GDALDataset& source, const std::string& name, const std::string& target) {
-  OGRSpatialReference utm;
-  utm.SetFromUserInput(target.c_str());
-  char* utm_wkt = nullptr;
-  utm.exportToWkt(&utm_wkt);
-  const std::string destination = "DST_SRS=" + std::string(utm_wkt);
-  CPLFree(utm_wkt);
+  const std::string destination = "DST_SRS=" + target;
   const char* options[] = {destination.c_str(), nullptr};
   void* transformer = GDALCreateGenImgProjTransformer2(GDALDataset::ToHandle(&source), nullptr,
                                                        const_cast<char**>(options));

@@ -1,7 +1,6 @@
 // The parameters of `talus rockfall` (rockfall_parameters.hpp).
 #include "rockfall_parameters.hpp"
 
-#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -178,9 +177,6 @@ RunChoices resolve_rockfall_parameters(RockfallOptions& o, ParameterTable& table
   if (parts > 1 && o.mode != "full") {
     throw InputError("[rock] fracture_parts " + std::to_string(parts) +
                      ": pre-fractured blocks need --mode full (fast mode moves intact rocks only)");
-  }
-  if (!(o.fracture_strength > 0.0 && std::isfinite(o.fracture_strength))) {
-    throw InputError("[rock] fracture_strength " + std::to_string(o.fracture_strength) + ": expected a force > 0 kN");
   }
   o.full.fracture_strength = 1000.0 * o.fracture_strength;
   RunChoices choices;
