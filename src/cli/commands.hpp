@@ -17,5 +17,6 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
 void add_params_command(CLI::App& app, Action& action);
 void add_calibrate_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line);
 void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line);
+void add_study_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line);
 
 }  // namespace talus::cli

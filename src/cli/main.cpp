@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   talus::cli::add_info_command(app, action);
   talus::cli::add_rockfall_command(app, action, command_line);
   talus::cli::add_mudflow_command(app, action, command_line);
+  talus::cli::add_study_command(app, action, command_line);
   talus::cli::add_params_command(app, action);
   talus::cli::add_calibrate_command(app, action, command_line);
   try {

@@ -1,203 +1,17 @@
-// `talus rockfall` (DESIGN.md section 3, issue 3): stochastic rock-fall trajectories on the
-// user's scene and every rock-fall layer, trajectories.gpkg and run.json.
-#include <algorithm>
-#include <chrono>
-#include <cmath>
+// `talus rockfall` (DESIGN.md section 3, issue 3): its options, parsed into the call that does
+// the work (rockfall_job.hpp), with the lines on stdout and the progress on stderr.
 #include <cstdio>
-#include <map>
 #include <memory>
-#include <optional>
-#include <sstream>
 
 #include "commands.hpp"
-#include "envelope_convergence_report.hpp"
-#include "intensity_layer.hpp"
+#include "job_output.hpp"
 #include "parameter_table.hpp"
-#include "rockfall_layers.hpp"
+#include "rockfall_job.hpp"
 #include "rockfall_parameters.hpp"
-#include "whole_number.hpp"
-#include "run_project.hpp"
 #include "terminal_progress.hpp"
-#include "truncated_trajectories.hpp"
-#include "talus/core/errors.hpp"
-#include "talus/gis/layer_writer.hpp"
-#include "talus/gis/run_record.hpp"
-#include "talus/gis/scene.hpp"
-#include "talus/gis/trajectory_writer.hpp"
-#include "talus/rockfall/fast_bounce.hpp"
-#include "talus/rockfall/full_model.hpp"
-#include "talus/rockfall/monte_carlo.hpp"
+#include "whole_number.hpp"
 
 namespace talus::cli {
-namespace {
-
-// The run in one line, for the TALUS_SCENARIO metadata of every layer.
-std::string scenario_text(const RockfallOptions& o) {
-  std::ostringstream text;
-  text << "rockfall " << o.mode << ", ";
-  if (o.settings.auto_runs) {
-    text << "runs per source until converged within " << o.settings.convergence.tolerance;
-  } else {
-    text << o.settings.runs_per_source << " runs per source";
-  }
-  text << ", seed " << o.settings.seed
-       << ", " << o.block_shape << " " << o.block_size << " m, " << o.settings.rock.density << " kg/m3";
-  return text.str();
-}
-
-// Median, 95th percentile (nearest rank) and maximum of the runs' horizontal path lengths (m).
-nlohmann::json runout_summary(std::vector<double> runouts) {
-  if (runouts.empty()) return {{"median_m", 0.0}, {"p95_m", 0.0}, {"max_m", 0.0}};
-  std::sort(runouts.begin(), runouts.end());
-  const auto rank = [&](double q) {
-    const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(runouts.size())));
-    return runouts[std::clamp<std::size_t>(k, 1, runouts.size()) - 1];
-  };
-  const std::size_t n = runouts.size();
-  const double median = n % 2 == 1 ? runouts[n / 2] : 0.5 * (runouts[n / 2 - 1] + runouts[n / 2]);
-  return {{"median_m", median}, {"p95_m", rank(0.95)}, {"max_m", runouts.back()}};
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// The trajectory model the run uses: fast bounce or the full piston-carpet model.
-std::unique_ptr<TrajectoryModel> trajectory_model(const RockfallOptions& o) {
-  if (o.mode == "fast") return std::make_unique<FastBounce>(o.fast);
-  return std::make_unique<FullModel>(o.full);
-}
-
-// The command line that reruns one trajectory alone: this run's, with --only-source and
-// --only-run set to it (docs/rockfall-full.md, section 5).
-std::string single_trajectory_command(const std::vector<std::string>& command_line, std::uint64_t source,
-                                      std::uint64_t run) {
-  std::string text;
-  for (std::size_t i = 0; i < command_line.size(); ++i) {
-    const std::string& word = command_line[i];
-    if (word == "--only-source" || word == "--only-run") {
-      ++i;
-      continue;
-    }
-    if (word.rfind("--only-source=", 0) == 0 || word.rfind("--only-run=", 0) == 0) continue;
-    const bool plain = !word.empty() && word.find_first_of(" \t'\"$\\") == std::string::npos;
-    text += (text.empty() ? "" : " ") + (plain ? word : "'" + word + "'");
-  }
-  return text + " --only-source " + std::to_string(source) + " --only-run " + std::to_string(run);
-}
-
-// run_rockfall, with a failing trajectory's error extended by the command that reproduces it.
-RockfallResult run_trajectories(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
-                                const TrajectoryModel& model, const RockfallOptions& o, TerminalProgress& progress) {
-  try {
-    return run_rockfall(ground, sources, model, o.settings, &progress);
-  } catch (const TrajectoryFailure& failure) {
-    throw NumericalFailure(std::string(failure.what()) + "; nothing was written; to rerun that trajectory alone: " +
-                           single_trajectory_command(o.command_line, failure.source, failure.run));
-  }
-}
-
-int run_rockfall_command(RockfallOptions& o, ParameterTable& table) {
-  const auto [intensity, project] = resolve_rockfall_parameters(o, table);
-  // The output folder is checked and staged before any work (issue 18, item 3).
-  gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", scenario_text(o)}});
-
-  const auto start = std::chrono::steady_clock::now();
-  gis::RunRecord record;
-  record.set_command_line(o.command_line);
-  o.inputs.run_rock = o.settings.rock;
-  const gis::Scene scene = gis::load_scene(o.inputs);
-  const GroundModel ground = scene.ground_model();
-  const std::vector<ReleaseSource> sources = release_sources(*scene.release);
-  const std::optional<std::uint64_t>& only_source = o.settings.only_source;
-  if (only_source && *only_source >= sources.size()) {
-    throw InputError("--only-source " + std::to_string(*only_source) + ": sources are numbered 0 to " +
-                     std::to_string(sources.size() - 1) + " (" + o.inputs.release.string() + ")");
-  }
-  const double read_seconds = seconds_since(start);
-  for (const auto& note : scene.notes) std::printf("note: %s\n", note.c_str());
-  for (const auto& problem : scene.problems) std::printf("problem: %s\n", problem.c_str());
-  if (o.settings.auto_runs) {
-    std::printf("Simulating %zu sources x %llu to %llu runs until converged (--runs auto, %s mode) ...\n",
-                sources.size(), static_cast<unsigned long long>(o.settings.convergence.min_runs),
-                static_cast<unsigned long long>(auto_run_limit(o.settings.convergence)), o.mode.c_str());
-  } else {
-    std::printf("Simulating %zu sources x %llu runs (%s mode) ...\n", sources.size(),
-                static_cast<unsigned long long>(o.settings.runs_per_source), o.mode.c_str());
-  }
-  std::fflush(stdout);
-
-  const auto simulate_start = std::chrono::steady_clock::now();
-  const std::unique_ptr<TrajectoryModel> model = trajectory_model(o);
-  TerminalProgress progress;
-  const RockfallResult result = run_trajectories(ground, sources, *model, o, progress);
-  const double simulate_seconds = seconds_since(simulate_start);
-
-  const auto write_start = std::chrono::steady_clock::now();
-  const nlohmann::json intensity_entry = write_layers_with_intensity(writer, rockfall_hazard_layers(result.statistics.layers()), intensity);
-  gis::add_trajectories(writer, result.lines, ground.spec().crs_wkt);
-
-  record.add_input("dem", o.inputs.dem, &scene.dem.elevation.spec());
-  if (!o.inputs.lithology.empty()) record.add_input("lithology", o.inputs.lithology, nullptr);
-  if (!o.inputs.vegetation.empty()) record.add_input("vegetation", o.inputs.vegetation, nullptr);
-  record.add_input("release", o.inputs.release, nullptr);
-  if (!o.inputs.materials.empty()) record.add_input("materials", o.inputs.materials, nullptr);
-  if (!o.scenario.empty()) record.add_input("scenario", o.scenario, nullptr);
-  record.set_parameters(table.values());
-  nlohmann::json stops = nlohmann::json::object();
-  for (std::size_t r = 0; r < result.stop_counts.size(); ++r) {
-    stops[to_string(static_cast<StopReason>(r))] = result.stop_counts[r];
-  }
-  record.set("seed", o.settings.seed);
-  record.set("threads", result.threads);
-  const auto sources_with_attributes =
-      std::count_if(sources.begin(), sources.end(), [](const ReleaseSource& s) { return !s.conditions.empty(); });
-  record.set("counts", {{"sources", sources.size()},
-                        {"sources_with_attributes", sources_with_attributes},
-                        {"trajectories", result.trajectories},
-                        {"stop_reasons", stops},
-                        {"fragments", result.fragments},
-                        {"saved_trajectories", result.lines.size()}});
-  record.set("runout", runout_summary(result.runouts));
-  record.set("runs", runs_record(result, o.settings));
-  record.set("convergence", convergence_record(result, o.settings));
-  if (intensity) record.set("intensity", intensity_entry);
-  const std::vector<std::string> trajectory_problems =
-      o.mode == "fast" ? truncated_trajectory_problems(result.stop_counts, "[fast_bounce] max_time", o.fast.max_time)
-                       : truncated_trajectory_problems(result.stop_counts, "[full] max_time", o.full.max_time);
-  std::vector<std::string> problems = scene.problems;
-  problems.insert(problems.end(), trajectory_problems.begin(), trajectory_problems.end());
-  const std::vector<std::string> unconverged = convergence_problems(result, o.settings);
-  problems.insert(problems.end(), unconverged.begin(), unconverged.end());
-  record.set("notes", scene.notes);
-  record.set("problems", problems);
-  record.add_timing("read_inputs", read_seconds);
-  record.add_timing("simulate", simulate_seconds);
-  record.add_timing("write_layers", seconds_since(write_start));
-  record.write(writer.temporary_path("run.json"));
-  const std::string project_line =
-      write_project_if_wanted(project, writer.staging_folder(), o.out, "rockfall", o.inputs.dem, o.inputs.release);
-  writer.commit();
-
-  std::printf("%llu trajectories in %.2f s (%.0f per second, %d threads); stopped: ",
-              static_cast<unsigned long long>(result.trajectories), simulate_seconds,
-              static_cast<double>(result.trajectories) / std::max(simulate_seconds, 1e-9), result.threads);
-  for (std::size_t r = 0; r < result.stop_counts.size(); ++r) {
-    std::printf("%s%s %llu", r ? ", " : "", to_string(static_cast<StopReason>(r)),
-                static_cast<unsigned long long>(result.stop_counts[r]));
-  }
-  if (result.fragments > 0) std::printf("; fragments from fractures %llu", static_cast<unsigned long long>(result.fragments));
-  std::printf("\n");
-  for (const auto& line : convergence_lines(result, o.settings)) std::printf("%s\n", line.c_str());
-  for (const auto& problem : trajectory_problems) std::printf("problem: %s\n", problem.c_str());
-  for (const auto& problem : unconverged) std::printf("problem: %s\n", problem.c_str());
-  if (intensity) std::printf("%s\n", intensity_summary(intensity_entry).c_str());
-  std::printf("Layers written to %s (open the .tif files in QGIS: each has its style beside it)\n", o.out.c_str());
-  if (!project_line.empty()) std::printf("%s\n", project_line.c_str());
-  return 0;
-}
-
-}  // namespace
 
 void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line) {
   auto o = std::make_shared<RockfallOptions>();
@@ -240,7 +54,11 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
       const std::string name(key);
       table->pin(name.substr(0, name.find('.')), name.substr(name.find('.') + 1), option->get_name());
     }
-    action = [o, table] { return run_rockfall_command(*o, *table); };
+    action = [o, table] {
+      TerminalProgress progress;
+      rockfall_job(*o, *table, JobOutput{print_line, progress});
+      return 0;
+    };
   });
 }
 

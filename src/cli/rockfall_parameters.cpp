@@ -38,12 +38,12 @@ Eigen::Vector3d parse_size(const std::string& text) {
 
 // --runs (or [run] runs) into the settings, and the convergence parameters checked: a tolerance
 // in (0, 1); with auto, min_runs >= 2 and max_runs >= min_runs; --only-run below the runs.
-void validate_runs(RockfallOptions& o) {
+void validate_runs(RockfallOptions& o, const ParameterTable& table) {
   if (!o.runs_flag.empty()) o.runs = parse_count_or_auto("--runs", o.runs_flag);
   RockfallSettings& s = o.settings;
   s.auto_runs = o.runs.automatic;
   if (!s.auto_runs) s.runs_per_source = o.runs.count;
-  if (!s.auto_runs && s.runs_per_source == 0) throw InputError("--runs 0: at least one run per source");
+  if (!s.auto_runs && s.runs_per_source == 0) throw InputError(table.where("run", "runs") + " 0: at least one run per source");
   const ConvergenceParameters& c = s.convergence;
   if (!(c.tolerance > 0.0 && c.tolerance < 1.0)) {
     throw InputError("[run] convergence_tolerance " + std::to_string(c.tolerance) + ": expected a fraction between 0 and 1");
@@ -167,7 +167,7 @@ RunChoices resolve_rockfall_parameters(RockfallOptions& o, ParameterTable& table
   if (o.settings.rock.shape == BlockShape::sphere && o.settings.rock.axes.maxCoeff() != o.settings.rock.axes.minCoeff()) {
     throw InputError("--block-size " + o.block_size + ": a sphere has one diameter; use --block-shape ellipsoid or box");
   }
-  validate_runs(o);
+  validate_runs(o, table);
   // Every other number against its range, naming the flag or scenario key that gave it.
   table.check_ranges();
   const int parts = o.full.fracture_parts;

@@ -1,0 +1,16 @@
+// The work of `talus rockfall` as one library call (issue 19), as GDAL's utilities are functions
+// with a thin program around them: the subcommand, `talus study` and every MPI rank call it.
+#pragma once
+
+#include "job_output.hpp"
+#include "parameter_table.hpp"
+#include "rockfall_parameters.hpp"
+
+namespace talus::cli {
+
+// Resolves and checks the parameters (`table` over `o`, flags pinned), reads the scene, runs the
+// trajectories and commits the layer set, trajectories.gpkg and run.json to o.out; throws
+// InputError, NumericalFailure or Cancelled with nothing written.
+void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& output);
+
+}  // namespace talus::cli

@@ -1,0 +1,192 @@
+#include "study_job.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "mudflow_job.hpp"
+#include "mudflow_parameters.hpp"
+#include "rockfall_job.hpp"
+#include "rockfall_parameters.hpp"
+#include "talus/core/errors.hpp"
+#include "talus/gis/scene.hpp"
+#include "talus/gis/staged_folder.hpp"
+
+namespace talus::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// "2 min 5 s", "1 h 3 min", for the time left.
+std::string duration_text(double seconds) {
+  const long total = std::lround(std::max(seconds, 0.0));
+  if (total < 60) return std::to_string(total) + " s";
+  if (total < 3600) return std::to_string(total / 60) + " min " + std::to_string(total % 60) + " s";
+  return std::to_string(total / 3600) + " h " + std::to_string(total % 3600 / 60) + " min";
+}
+
+// One scenario's share of the study's progress: each scenario counts alike, and the time left is
+// the wall time so far scaled to the fraction still to do.
+class StudyProgress final : public Progress {
+ public:
+  StudyProgress(Progress& terminal, std::size_t count) : terminal_(terminal), count_(count), start_(Clock::now()) {}
+  void begin(std::size_t index, const std::string& name) {
+    index_ = index;
+    name_ = name;
+  }
+  void report(double fraction_done, const std::string& phase) override {
+    const double done = (static_cast<double>(index_) + std::clamp(fraction_done, 0.0, 1.0)) / static_cast<double>(count_);
+    std::string text = name_ + " (" + std::to_string(index_ + 1) + " of " + std::to_string(count_) + "): " + phase;
+    if (done > 0.0 && done < 1.0) text += "; study: about " + duration_text(seconds_since(start_) * (1.0 - done) / done) + " left";
+    terminal_.report(done, text);
+  }
+  bool cancelled() const override { return terminal_.cancelled(); }
+
+ private:
+  Progress& terminal_;
+  std::size_t count_;
+  Clock::time_point start_;
+  std::size_t index_ = 0;
+  std::string name_;
+};
+
+// A scenario's options and parameter table, as `talus rockfall` or `talus mudflow` would have
+// them with the study's inputs, the scenario's keys and --threads.
+struct RockfallScenarioRun {
+  RockfallOptions options;
+  ParameterTable table = rockfall_parameter_table(options);
+};
+struct MudflowScenarioRun {
+  MudflowOptions options;
+  ParameterTable table = mudflow_parameter_table(options);
+};
+
+template <typename Run>
+void set_up(Run& run, const Study& study, const StudyScenario& s, const StudyChoices& choices) {
+  run.options.inputs = study.inputs;
+  run.options.inputs.release = s.release;
+  run.options.out = choices.out / "scenarios" / s.name;
+  run.options.scenario = s.scenario;
+  run.options.command_line = choices.command_line;
+  run.table.apply(s.parameters, ParameterTable::Origin::scenario, s.where);
+  if (choices.threads) {
+    run.options.settings.threads = *choices.threads;
+    run.table.pin("run", "threads", "--threads");
+  }
+}
+
+// What a run of `s` resolves and reads before any work: every parameter, the scene and its release.
+void check_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices) {
+  if (s.process == StudyProcess::rockfall) {
+    RockfallScenarioRun run;
+    set_up(run, study, s, choices);
+    resolve_rockfall_parameters(run.options, run.table);
+    run.options.inputs.run_rock = run.options.settings.rock;
+    gis::load_scene(run.options.inputs);
+  } else {
+    MudflowScenarioRun run;
+    set_up(run, study, s, choices);
+    run.options.inputs.erodible = s.erodible;
+    resolve_mudflow_parameters(run.options, run.table, false);
+    run.options.inputs.release_needs_depth = true;
+    gis::load_scene(run.options.inputs);
+  }
+}
+
+void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices, const JobOutput& output) {
+  if (s.process == StudyProcess::rockfall) {
+    RockfallScenarioRun run;
+    set_up(run, study, s, choices);
+    rockfall_job(run.options, run.table, output);
+  } else {
+    MudflowScenarioRun run;
+    set_up(run, study, s, choices);
+    run.options.inputs.erodible = s.erodible;
+    mudflow_job(run.options, run.table, false, output);
+  }
+}
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+// study.json: the study file, and per scenario its process, return period, folder and what its
+// run.json says of parameters, counts, problems and timings.
+nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choices, const std::vector<double>& seconds) {
+  nlohmann::ordered_json record;
+  record["talus_version"] = TALUS_VERSION;
+  record["command_line"] = choices.command_line;
+  record["study"] = std::filesystem::absolute(study.file).string();
+  nlohmann::ordered_json scenarios = nlohmann::ordered_json::array();
+  double total = 0;
+  for (std::size_t k = 0; k < study.scenarios.size(); ++k) {
+    const StudyScenario& s = study.scenarios[k];
+    const std::filesystem::path folder = std::filesystem::path("scenarios") / s.name;
+    const nlohmann::json run = read_json(choices.out / folder / "run.json");
+    scenarios.push_back({{"name", s.name},
+                         {"process", to_string(s.process)},
+                         {"return_period_years", s.return_period_years},
+                         {"annual_frequency", 1.0 / s.return_period_years},
+                         {"folder", folder.string()},
+                         {"seconds", seconds[k]},
+                         {"parameters", run["parameters"]},
+                         {"counts", run["counts"]},
+                         {"problems", run["problems"]},
+                         {"timings_s", run["timings_s"]}});
+    total += seconds[k];
+  }
+  record["scenarios"] = scenarios;
+  record["seconds"] = total;
+  return record;
+}
+
+// OUT may be new, empty, or a study's earlier output; anything else is not ours to write into.
+void check_study_folder(const std::filesystem::path& out) {
+  std::error_code ec;
+  if (!std::filesystem::exists(out, ec)) return;
+  if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string() + ": --out is a file, not a folder");
+  for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name != "scenarios" && name != "study.json" && name.rfind(".study.json", 0) != 0) {
+      throw InputError(out.string() + ": --out holds files that are not a Talus study (" + name +
+                       "); give a new or empty folder");
+    }
+  }
+}
+
+}  // namespace
+
+void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output) {
+  check_study_folder(choices.out);
+  output.say("Checking " + std::to_string(study.scenarios.size()) + " scenarios of " + study.file.string() + " ...");
+  for (const StudyScenario& s : study.scenarios) check_scenario(study, s, choices);
+  StudyProgress progress(output.progress, study.scenarios.size());
+  std::vector<double> seconds;
+  for (std::size_t k = 0; k < study.scenarios.size(); ++k) {
+    const StudyScenario& s = study.scenarios[k];
+    progress.begin(k, s.name);
+    output.say("Scenario " + std::to_string(k + 1) + " of " + std::to_string(study.scenarios.size()) + ": " + s.name +
+               " (" + to_string(s.process) + ", return period " + printf_text("%g", s.return_period_years) + " years)");
+    const auto start = Clock::now();
+    run_scenario(study, s, choices, JobOutput{[&](const std::string& line) { output.say("  " + line); }, progress});
+    seconds.push_back(seconds_since(start));
+  }
+  const std::filesystem::path record_path = choices.out / "study.json";
+  const std::filesystem::path partial = choices.out / ".study.json.partial";
+  {
+    std::ofstream file(partial);
+    file << study_record(study, choices, seconds).dump(2) << '\n';
+    if (!file) throw std::runtime_error("cannot write " + partial.string());
+  }
+  std::filesystem::rename(partial, record_path);
+  output.say("Study written to " + choices.out.string() + ": " + std::to_string(study.scenarios.size()) +
+             " scenarios under scenarios/, study.json");
+}
+
+}  // namespace talus::cli

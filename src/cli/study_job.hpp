@@ -1,0 +1,28 @@
+// The work of `talus study` as one library call (issue 19, item 2; docs/study.md): every scenario
+// of a study file run by the subcommands' own calls (rockfall_job.hpp, mudflow_job.hpp) into its
+// own folder, with the progress and the time left over the whole study, and study.json.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "job_output.hpp"
+#include "study_file.hpp"
+
+namespace talus::cli {
+
+struct StudyChoices {
+  std::filesystem::path out;
+  std::optional<int> threads;            // --threads: every scenario's [run] threads
+  std::vector<std::string> command_line;
+};
+
+// Checks every scenario's parameters and reads every scenario's inputs first (a bad one is
+// InputError with nothing written), then runs the scenarios in the file's order into
+// OUT/scenarios/NAME and writes OUT/study.json. A scenario that fails stops the study; the
+// scenarios finished before it stay committed.
+void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output);
+
+}  // namespace talus::cli
