@@ -2,6 +2,8 @@
 // top of src/cli/intensity_guidelines.toml.
 #include "intensity_guidelines.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -117,9 +119,14 @@ std::vector<std::string> guideline_names(const toml::table& file) {
   return names;
 }
 
-}  // namespace
+// The guideline `choice` names: a built-in one, or FILE.toml's `default` or only guideline.
+struct ChosenGuideline {
+  toml::table file;
+  std::string name;
+  std::string origin;  // for messages: "intensity_guidelines.toml", "F.toml (intensity guideline)"
+};
 
-IntensityScheme intensity_scheme(const std::string& choice, const std::string& process) {
+ChosenGuideline chosen_guideline(const std::string& choice) {
   const std::filesystem::path path(choice);
   if (path.extension() != ".toml") {
     const toml::table& file = built_in_file();
@@ -129,23 +136,108 @@ IntensityScheme intensity_scheme(const std::string& choice, const std::string& p
       throw InputError("--intensity " + choice + ": not a built-in guideline (" + names +
                        "), none, or a FILE.toml");
     }
-    return scheme_of(file, choice, process, "intensity_guidelines.toml");
+    return {file, choice, "intensity_guidelines.toml"};
   }
-  const std::string origin = path.string() + " (intensity guideline)";
-  toml::table file;
+  ChosenGuideline chosen;
+  chosen.origin = path.string() + " (intensity guideline)";
   try {
-    file = toml::parse_file(path.string());
+    chosen.file = toml::parse_file(path.string());
   } catch (const toml::parse_error& error) {
-    throw InputError(origin + ": line " + std::to_string(error.source().begin.line) + ": " +
+    throw InputError(chosen.origin + ": line " + std::to_string(error.source().begin.line) + ": " +
                      std::string(error.description()));
   }
-  std::string name = file["default"].value<std::string>().value_or("");
-  if (name.empty()) {
-    const auto names = guideline_names(file);
-    if (names.size() != 1) throw InputError(origin + ": holds several guidelines; name one with `default = \"NAME\"`");
-    name = names.front();
+  chosen.name = chosen.file["default"].value<std::string>().value_or("");
+  if (chosen.name.empty()) {
+    const auto names = guideline_names(chosen.file);
+    if (names.size() != 1) throw InputError(chosen.origin + ": holds several guidelines; name one with `default = \"NAME\"`");
+    chosen.name = names.front();
   }
-  return scheme_of(file, name, process, origin);
+  return chosen;
+}
+
+// The strings of an array, or InputError naming `where`.
+std::vector<std::string> string_list(const toml::node_view<const toml::node>& node, const std::string& where) {
+  const toml::array* array = node.as_array();
+  if (array == nullptr || array->empty()) throw InputError(where + " must be a list of strings");
+  std::vector<std::string> out;
+  for (const toml::node& item : *array) {
+    const auto text = item.value<std::string>();
+    if (!text) throw InputError(where + " must be a list of strings");
+    out.push_back(*text);
+  }
+  return out;
+}
+
+HazardMatrix matrix_of(const toml::table& hazard, const std::string& name, const std::string& origin) {
+  const std::string where = origin + ": [" + name + ".hazard]";
+  HazardMatrix matrix;
+  matrix.guideline = name;
+  matrix.source = hazard["source"].value<std::string>().value_or("");
+  matrix.probabilities = string_list(hazard["probabilities"], where + " probabilities");
+  const toml::array* limits = hazard["return_period_limits"].as_array();
+  if (limits == nullptr || limits->size() + 1 != matrix.probabilities.size()) {
+    throw InputError(where + " return_period_limits must list one return period (years) fewer than the probabilities");
+  }
+  for (const toml::node& item : *limits) {
+    const auto years = item.value<double>();
+    if (!years || !std::isfinite(*years) || *years <= 0.0 ||
+        (!matrix.return_period_limits.empty() && *years <= matrix.return_period_limits.back())) {
+      throw InputError(where + " return_period_limits must be increasing return periods (years) > 0");
+    }
+    matrix.return_period_limits.push_back(*years);
+  }
+  const toml::array* degrees = hazard["degrees"].as_array();
+  if (degrees == nullptr || degrees->empty()) throw InputError(where + ": no [[" + name + ".hazard.degrees]]");
+  for (const toml::node& node : *degrees) {
+    const toml::table* entry = node.as_table();
+    const std::string at = where + " degree " + std::to_string(matrix.degrees.size() + 1);
+    if (entry == nullptr) throw InputError(at + ": not a table");
+    HazardDegree d;
+    const auto value = (*entry)["value"].value<std::int64_t>();
+    if (!value || *value < 1 || *value > 255) throw InputError(at + ": `value` must be an integer 1-255");
+    d.value = static_cast<int>(*value);
+    d.name = (*entry)["name"].value<std::string>().value_or("");
+    d.label = (*entry)["label"].value<std::string>().value_or(d.name);
+    d.colour = (*entry)["colour"].value<std::string>().value_or("");
+    if (d.name.empty() || d.name == "none") throw InputError(at + ": `name` is missing or \"none\"");
+    if (!is_colour(d.colour)) throw InputError(at + " (" + d.name + "): `colour` must be #rrggbb");
+    for (const HazardDegree& earlier : matrix.degrees) {
+      if (earlier.value == d.value || earlier.name == d.name) throw InputError(at + " (" + d.name + "): used twice");
+    }
+    matrix.degrees.push_back(std::move(d));
+  }
+  const toml::table* rows = hazard["matrix"].as_table();
+  if (rows == nullptr || rows->empty()) throw InputError(where + ": no [" + name + ".hazard.matrix]");
+  for (const auto& [key, node] : *rows) {
+    const std::string row_where = where + " matrix " + std::string(key.str());
+    const std::vector<std::string> names = string_list(toml::node_view<const toml::node>(&node), row_where);
+    if (names.size() != matrix.probabilities.size()) {
+      throw InputError(row_where + ": one degree per probability class (" + std::to_string(matrix.probabilities.size()) + ")");
+    }
+    std::vector<int> values;
+    for (const std::string& degree : names) {
+      const auto found = std::find_if(matrix.degrees.begin(), matrix.degrees.end(),
+                                      [&](const HazardDegree& d) { return d.name == degree; });
+      if (degree != "none" && found == matrix.degrees.end()) throw InputError(row_where + ": no degree named '" + degree + "'");
+      values.push_back(degree == "none" ? 0 : found->value);
+    }
+    matrix.degree_values[std::string(key.str())] = values;
+  }
+  return matrix;
+}
+
+}  // namespace
+
+IntensityScheme intensity_scheme(const std::string& choice, const std::string& process) {
+  const ChosenGuideline chosen = chosen_guideline(choice);
+  return scheme_of(chosen.file, chosen.name, process, chosen.origin);
+}
+
+std::optional<HazardMatrix> hazard_matrix(const std::string& choice) {
+  const ChosenGuideline chosen = chosen_guideline(choice);
+  const toml::table* hazard = chosen.file[chosen.name]["hazard"].as_table();
+  if (hazard == nullptr) return std::nullopt;
+  return matrix_of(*hazard, chosen.name, chosen.origin);
 }
 
 nlohmann::json built_in_intensity_guidelines() {

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "talus/hazard/hazard_matrix.hpp"
 #include "talus/hazard/intensity_classes.hpp"
 
 namespace talus::cli {
@@ -16,6 +18,10 @@ namespace talus::cli {
 // file, or FILE.toml (its `default` guideline, or its only one). Throws InputError naming the
 // file or option and the problem.
 IntensityScheme intensity_scheme(const std::string& choice, const std::string& process);
+
+// The hazard matrix of the guideline `choice` names (as intensity_scheme()), none when it has
+// no [NAME.hazard] table. Throws InputError naming the file and the problem.
+std::optional<HazardMatrix> hazard_matrix(const std::string& choice);
 
 // "foen-2016, ...": the built-in guidelines, for messages and `talus params`.
 nlohmann::json built_in_intensity_guidelines();

@@ -113,9 +113,24 @@ Study read_study(const std::filesystem::path& file) {
   const std::filesystem::path folder = file.parent_path();
   for (const auto& [key, node] : root) {
     const std::string section(key.str());
-    if (section != "inputs" && section != "rockfall" && section != "mudflow") {
-      throw InputError(name + ": unknown section '" + section + "' (a study has [inputs], [[rockfall]] and [[mudflow]])");
+    if (section != "inputs" && section != "hazard" && section != "rockfall" && section != "mudflow") {
+      throw InputError(name + ": unknown section '" + section +
+                       "' (a study has [inputs], [hazard], [[rockfall]] and [[mudflow]])");
     }
+  }
+  if (const toml::node* hazard_node = root.get("hazard")) {
+    const toml::table* hazard = hazard_node->as_table();
+    if (hazard == nullptr) throw InputError(name + ": 'hazard' must be a table, [hazard]");
+    for (const auto& [key, node] : *hazard) {
+      if (key.str() != "rockfall_probability") {
+        throw InputError(name + ": [hazard]: unknown key '" + std::string(key.str()) + "' (rockfall_probability)");
+      }
+    }
+    const std::string choice = text_key(*hazard, "rockfall_probability", name + ": [hazard]", false);
+    if (!choice.empty() && choice != "reach" && choice != "onset") {
+      throw InputError(name + ": [hazard] rockfall_probability " + choice + ": use reach or onset");
+    }
+    study.rockfall_reach = choice != "onset";
   }
   const toml::table* inputs = root["inputs"].as_table();
   if (inputs == nullptr) throw InputError(name + ": [inputs] with the region's dem is missing");

@@ -30,6 +30,9 @@ struct StudyScenario {
 
 struct Study {
   std::filesystem::path file;
+  // [hazard] rockfall_probability: "reach" (default), a rock fall's return period at a cell is the
+  // scenario's over the cell's reach probability; "onset", the scenario's wherever a rock reaches.
+  bool rockfall_reach = true;
   gis::SceneInputs inputs;  // dem, lithology, vegetation, materials, crs
   std::vector<StudyScenario> scenarios;  // in the file's order: rock falls, then mud flows
 };

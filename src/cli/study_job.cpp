@@ -11,6 +11,7 @@
 #include "mudflow_parameters.hpp"
 #include "rockfall_job.hpp"
 #include "rockfall_parameters.hpp"
+#include "study_hazard.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/scene.hpp"
 #include "talus/gis/staged_folder.hpp"
@@ -80,22 +81,24 @@ void set_up(Run& run, const Study& study, const StudyScenario& s, const StudyCho
   }
 }
 
-// What a run of `s` resolves and reads before any work: every parameter, the scene and its release.
-void check_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices) {
+// What a run of `s` resolves and reads before any work: every parameter, the scene and its release;
+// returns the scenario's [outputs] intensity.
+std::string check_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices) {
   if (s.process == StudyProcess::rockfall) {
     RockfallScenarioRun run;
     set_up(run, study, s, choices);
     resolve_rockfall_parameters(run.options, run.table);
     run.options.inputs.run_rock = run.options.settings.rock;
     gis::load_scene(run.options.inputs);
-  } else {
-    MudflowScenarioRun run;
-    set_up(run, study, s, choices);
-    run.options.inputs.erodible = s.erodible;
-    resolve_mudflow_parameters(run.options, run.table, false);
-    run.options.inputs.release_needs_depth = true;
-    gis::load_scene(run.options.inputs);
+    return run.options.intensity;
   }
+  MudflowScenarioRun run;
+  set_up(run, study, s, choices);
+  run.options.inputs.erodible = s.erodible;
+  resolve_mudflow_parameters(run.options, run.table, false);
+  run.options.inputs.release_needs_depth = true;
+  gis::load_scene(run.options.inputs);
+  return run.options.intensity;
 }
 
 void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices, const JobOutput& output) {
@@ -118,7 +121,8 @@ nlohmann::json read_json(const std::filesystem::path& path) {
 
 // study.json: the study file, and per scenario its process, return period, folder and what its
 // run.json says of parameters, counts, problems and timings.
-nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choices, const std::vector<double>& seconds) {
+nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choices, const std::vector<double>& seconds,
+                                    const StudyZoning& zoning, const nlohmann::ordered_json& hazard) {
   nlohmann::ordered_json record;
   record["talus_version"] = TALUS_VERSION;
   record["command_line"] = choices.command_line;
@@ -142,18 +146,22 @@ nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choi
     total += seconds[k];
   }
   record["scenarios"] = scenarios;
+  record["hazard"] = zoning.matrix ? hazard : nlohmann::ordered_json({{"note", zoning.note}});
   record["seconds"] = total;
   return record;
 }
 
-// OUT may be new, empty, or a study's earlier output; anything else is not ours to write into.
+// OUT may be new, empty, or a study's earlier output (with a staging folder a killed run left);
+// anything else is not ours to write into.
 void check_study_folder(const std::filesystem::path& out) {
   std::error_code ec;
   if (!std::filesystem::exists(out, ec)) return;
   if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string() + ": --out is a file, not a folder");
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name != "scenarios" && name != "study.json" && name.rfind(".study.json", 0) != 0) {
+    const bool ours = name == "scenarios" || name == "hazard" || name == "study.json" ||
+                      name.rfind(".study.json", 0) == 0 || name.rfind(".hazard.talus-", 0) == 0;
+    if (!ours) {
       throw InputError(out.string() + ": --out holds files that are not a Talus study (" + name +
                        "); give a new or empty folder");
     }
@@ -165,7 +173,9 @@ void check_study_folder(const std::filesystem::path& out) {
 void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output) {
   check_study_folder(choices.out);
   output.say("Checking " + std::to_string(study.scenarios.size()) + " scenarios of " + study.file.string() + " ...");
-  for (const StudyScenario& s : study.scenarios) check_scenario(study, s, choices);
+  std::vector<std::string> intensity;
+  for (const StudyScenario& s : study.scenarios) intensity.push_back(check_scenario(study, s, choices));
+  const StudyZoning zoning = study_zoning(study, intensity);
   StudyProgress progress(output.progress, study.scenarios.size());
   std::vector<double> seconds;
   for (std::size_t k = 0; k < study.scenarios.size(); ++k) {
@@ -177,16 +187,22 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
     run_scenario(study, s, choices, JobOutput{[&](const std::string& line) { output.say("  " + line); }, progress});
     seconds.push_back(seconds_since(start));
   }
+  nlohmann::ordered_json hazard;
+  if (zoning.matrix) {
+    hazard = write_study_hazard(study, choices, zoning, output);
+  } else {
+    output.say("note: " + zoning.note);
+  }
   const std::filesystem::path record_path = choices.out / "study.json";
   const std::filesystem::path partial = choices.out / ".study.json.partial";
   {
     std::ofstream file(partial);
-    file << study_record(study, choices, seconds).dump(2) << '\n';
+    file << study_record(study, choices, seconds, zoning, hazard).dump(2) << '\n';
     if (!file) throw std::runtime_error("cannot write " + partial.string());
   }
   std::filesystem::rename(partial, record_path);
   output.say("Study written to " + choices.out.string() + ": " + std::to_string(study.scenarios.size()) +
-             " scenarios under scenarios/, study.json");
+             " scenarios under scenarios/, " + (zoning.matrix ? "the hazard map under hazard/, " : "") + "study.json");
 }
 
 }  // namespace talus::cli

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -47,6 +48,11 @@ fs::path write_study(const fs::path& folder, const std::string& text) {
   const fs::path file = folder / "study.toml";
   std::ofstream(file) << text;
   return file;
+}
+
+std::string replaced(std::string text, const std::string& what, const std::string& by) {
+  const auto at = text.find(what);
+  return at == std::string::npos ? text : text.replace(at, what.size(), by);
 }
 
 std::vector<float> band(const fs::path& path) { return test::read_band(path); }
@@ -94,6 +100,77 @@ TEST(Study, EachScenarioEqualsItsSubcommandBitForBit) {
   EXPECT_EQ(record["scenarios"][0]["counts"]["trajectories"], 3 * 260);
   EXPECT_DOUBLE_EQ(record["scenarios"][1]["return_period_years"].get<double>(), 100.0);
   EXPECT_EQ(record["scenarios"][1]["folder"], "scenarios/mud");
+  EXPECT_EQ(record["hazard"]["guideline"], "foen-2016");
+}
+
+// The published Swiss matrix (FOEN 2016 after BRP/BWW/BUWAL 1997), written out here apart from
+// src/cli/intensity_guidelines.toml: degree 4 high, 3 medium, 2 low, 1 residual, per intensity
+// class 1 weak, 2 medium, 3 strong and per probability class of the return period.
+float swiss_degree(float intensity, double return_period) {
+  const int column = return_period <= 30 ? 0 : return_period <= 100 ? 1 : return_period <= 300 ? 2 : 3;
+  static const float kDegrees[3][4] = {{3, 2, 2, 1}, {4, 3, 3, 1}, {4, 4, 4, 1}};
+  return intensity >= 1 ? kDegrees[static_cast<int>(intensity) - 1][column] : 0.0f;
+}
+
+// issue 19, item 3: hazard.tif holds, per cell, the highest degree of the scenarios' intensity at
+// their return periods; each process's map its own scenarios'; both open styled in QGIS, and the
+// zones as polygons with a categorized style.
+TEST(Study, TheHazardMapTakesEachCellsHighestDegreeOverTheScenarios) {
+  const fs::path folder = test::fresh_folder("study_hazard");
+  std::string text = sample_study();
+  // A second, rarer rock fall of bigger blocks, so that a cell's degree comes from several scenarios.
+  const fs::path sample = test::source_dir() / "sample_dem";
+  text += "[[rockfall]]\nname = \"big\"\nrelease = \"" + (sample / "rockfall_release.gpkg").string() +
+          "\"\nreturn_period = 1000\n[rockfall.run]\nruns = 3\n[rockfall.rock]\nsize = \"3\"\n"
+          "[rockfall.outputs]\nproject = \"off\"\n";
+  const fs::path study = write_study(folder, text);
+  const test::ProgramResult run = test::run_talus({"study", study.string(), "--out", "out"}, folder);
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+
+  const struct {
+    const char* name;
+    double return_period;
+    bool rockfall;
+  } scenarios[] = {{"blocks", 30, true}, {"big", 1000, true}, {"mud", 100, false}};
+  const std::size_t cells = band(folder / "out/hazard/hazard.tif").size();
+  std::vector<float> both(cells, 0.0f), rockfall(cells, 0.0f), mudflow(cells, 0.0f);
+  for (const auto& s : scenarios) {
+    const std::vector<float> intensity = band(folder / "out/scenarios" / s.name / "intensity.tif");
+    // A rock fall reaches a cell once in 1 / reach_probability of its events (the default
+    // [hazard] rockfall_probability = "reach").
+    const std::vector<float> reach =
+        s.rockfall ? band(folder / "out/scenarios" / s.name / "reach_probability.tif") : std::vector<float>(cells, 1.0f);
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+      if (intensity[cell] < 0) {
+        both[cell] = rockfall[cell] = mudflow[cell] = intensity[cell];
+        continue;
+      }
+      if (!(reach[cell] > 0.0f)) continue;
+      const float degree = swiss_degree(intensity[cell], s.return_period / std::min(1.0, double(reach[cell])));
+      (s.rockfall ? rockfall : mudflow)[cell] = std::max((s.rockfall ? rockfall : mudflow)[cell], degree);
+      both[cell] = std::max(both[cell], degree);
+    }
+  }
+  EXPECT_EQ(band(folder / "out/hazard/hazard.tif"), both);
+  EXPECT_EQ(band(folder / "out/hazard/hazard_rockfall.tif"), rockfall);
+  EXPECT_EQ(band(folder / "out/hazard/hazard_mudflow.tif"), mudflow);
+  for (const float degree : {1.0f, 2.0f, 3.0f, 4.0f}) {  // every degree occurs
+    EXPECT_GT(std::count(both.begin(), both.end(), degree), 0) << degree;
+  }
+
+  const std::string qgis = "/usr/bin/python3 " + (test::source_dir() / "tests/gis/qgis").string();
+  const std::string hazard = (folder / "out/hazard").string();
+  EXPECT_EQ(std::system((qgis + "/check_layer_in_qgis.py EPSG:31287 " + hazard +
+                         "/hazard.tif 'Hazard degree, rock fall and mud flow, by foen-2016' " + hazard +
+                         "/hazard_mudflow.tif 'Hazard degree, mud flow, by foen-2016'").c_str()),
+            0);
+  EXPECT_EQ(std::system((qgis + "/check_zones_in_qgis.py EPSG:31287 " + hazard + "/hazard_zones.gpkg").c_str()), 0);
+
+  std::ifstream record_file(folder / "out/study.json");
+  const nlohmann::json record = nlohmann::json::parse(record_file);
+  const auto& high = record["hazard"]["maps"]["hazard"][0];
+  EXPECT_EQ(high["name"], "high");
+  EXPECT_EQ(high["cells"], std::count(both.begin(), both.end(), 4.0f));
 }
 
 // Each bad study is refused before any scenario runs: one line naming the file and the key,
@@ -110,6 +187,9 @@ TEST(Study, ABadStudyIsRefusedWithOneLineAndNothingWritten) {
       {sample_study("", (folder / "missing.gpkg").string()), "missing.gpkg"},
       {sample_study() + "[[mudflow]]\nname = \"mud\"\nrelease = \"r.gpkg\"\nreturn_period = 10\n", "a second scenario"},
       {"[inputs]\ndem = \"dem.tif\"\n", "no scenario"},
+      {"[hazard]\nrockfall_probability = \"max\"\n" + sample_study(), "use reach or onset"},
+      {replaced(sample_study(), "project = \"off\"\n[[mudflow]]", "project = \"off\"\nintensity = \"none\"\n[[mudflow]]"),
+       "the hazard map needs every scenario's intensity"},
   };
   for (const auto& c : cases) {
     const fs::path study = write_study(folder, c.text);
@@ -119,6 +199,14 @@ TEST(Study, ABadStudyIsRefusedWithOneLineAndNothingWritten) {
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     EXPECT_FALSE(fs::exists(folder / "out")) << c.expected;
   }
+  // An output folder that holds other files is not a study's to write into.
+  fs::create_directories(folder / "busy");
+  std::ofstream(folder / "busy" / "notes.txt") << "keep\n";
+  const test::ProgramResult busy =
+      test::run_talus({"study", write_study(folder, sample_study()).string(), "--out", "busy"}, folder);
+  EXPECT_EQ(busy.exit_code, 2) << busy.err;
+  EXPECT_NE(busy.err.find("not a Talus study (notes.txt)"), std::string::npos) << busy.err;
+  EXPECT_EQ(std::distance(fs::directory_iterator(folder / "busy"), fs::directory_iterator()), 1);
 }
 
 }  // namespace
