@@ -13,8 +13,8 @@ namespace {
 constexpr double kLongestReturnPeriod = 1e6;  // years
 
 // The keys of a scenario that are the study's own; every other key is a subcommand section.
-const std::set<std::string> kScenarioKeys = {"name", "release", "erodible", "scenario", "return_period",
-                                             "annual_frequency"};
+const std::set<std::string> kScenarioKeys = {"name",          "release",          "erodible",     "scenario",
+                                             "return_period", "annual_frequency", "source_slope", "source_lithology"};
 
 std::string text_key(const toml::table& table, const std::string& key, const std::string& where, bool required) {
   const toml::node* node = table.get(key);
@@ -64,6 +64,26 @@ double return_period(const toml::table& table, const std::string& where) {
   return years;
 }
 
+// source_slope (degrees, 1-89) and source_lithology (class codes) of a rock fall with release = "auto".
+void read_source_keys(const toml::table& table, StudyScenario& s) {
+  if (const toml::node* slope = table.get("source_slope")) {
+    const auto degrees = slope->value<double>();
+    if (!degrees || !(*degrees >= 1.0 && *degrees <= 89.0)) {
+      throw InputError(s.where + ": 'source_slope' must be an angle of 1 to 89 degrees");
+    }
+    s.source_slope = *degrees;
+  }
+  if (const toml::node* classes = table.get("source_lithology")) {
+    const toml::array* list = classes->as_array();
+    if (list == nullptr || list->empty()) throw InputError(s.where + ": 'source_lithology' must list lithology class codes");
+    for (const toml::node& item : *list) {
+      const auto code = item.value<std::int64_t>();
+      if (!code || *code < 0 || *code > 65535) throw InputError(s.where + ": 'source_lithology' must list class codes 0-65535");
+      s.source_lithology.insert(static_cast<int>(*code));
+    }
+  }
+}
+
 StudyScenario read_scenario(const toml::table& table, StudyProcess process, const std::string& file_name,
                             const std::filesystem::path& folder, std::size_t index) {
   StudyScenario s;
@@ -73,7 +93,16 @@ StudyScenario read_scenario(const toml::table& table, StudyProcess process, cons
   s.name = text_key(table, "name", s.where, true);
   s.where = file_name + ": " + array + " " + s.name;
   check_name(s.name, s.where);
-  s.release = path_key(table, "release", s.where, folder, true);
+  const bool automatic = process == StudyProcess::rockfall && text_key(table, "release", s.where, true) == "auto";
+  if (automatic) {
+    s.detect_sources = true;
+    read_source_keys(table, s);
+  } else {
+    s.release = path_key(table, "release", s.where, folder, true);
+    if (table.contains("source_slope") || table.contains("source_lithology")) {
+      throw InputError(s.where + ": 'source_slope' and 'source_lithology' are for release = \"auto\" (rock fall)");
+    }
+  }
   s.scenario = path_key(table, "scenario", s.where, folder, false);
   if (process == StudyProcess::mudflow) {
     s.erodible = path_key(table, "erodible", s.where, folder, false);

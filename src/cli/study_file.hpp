@@ -5,6 +5,8 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -20,7 +22,13 @@ const char* to_string(StudyProcess process);
 struct StudyScenario {
   StudyProcess process = StudyProcess::rockfall;
   std::string name;                   // its folder under scenarios/: letters, digits, '-', '_', '.'
-  std::filesystem::path release;      // raster or vector layer, as --release
+  std::filesystem::path release;      // raster or vector layer, as --release; empty with detect_sources
+  // Rock fall, release = "auto": sources from the slope (docs/study.md, "Sources from the slope"):
+  // steeper than source_slope (degrees) or, without it, than the DEM's cliff threshold (Loye et al.
+  // 2009), and of a lithology class in source_lithology (all classes when empty).
+  bool detect_sources = false;
+  std::optional<double> source_slope;
+  std::set<int> source_lithology;
   std::filesystem::path erodible;     // mud flow only, as --erodible; empty: none
   std::filesystem::path scenario;     // a scenario file under the study's keys, as --scenario; empty: none
   double return_period_years = 0;     // from return_period (years) or annual_frequency (1/year)

@@ -12,6 +12,7 @@
 #include "rockfall_job.hpp"
 #include "rockfall_parameters.hpp"
 #include "study_hazard.hpp"
+#include "study_sources.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/scene.hpp"
 #include "talus/gis/staged_folder.hpp"
@@ -70,7 +71,7 @@ struct MudflowScenarioRun {
 template <typename Run>
 void set_up(Run& run, const Study& study, const StudyScenario& s, const StudyChoices& choices) {
   run.options.inputs = study.inputs;
-  run.options.inputs.release = s.release;
+  run.options.inputs.release = s.detect_sources ? detected_sources_path(choices.out, s) : s.release;
   run.options.out = choices.out / "scenarios" / s.name;
   run.options.scenario = s.scenario;
   run.options.command_line = choices.command_line;
@@ -81,15 +82,15 @@ void set_up(Run& run, const Study& study, const StudyScenario& s, const StudyCho
   }
 }
 
-// What a run of `s` resolves and reads before any work: every parameter, the scene and its release;
-// returns the scenario's [outputs] intensity.
+// What a run of `s` resolves and reads before any work: every parameter, the scene and its release
+// (unless the study finds its sources); returns the scenario's [outputs] intensity.
 std::string check_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices) {
   if (s.process == StudyProcess::rockfall) {
     RockfallScenarioRun run;
     set_up(run, study, s, choices);
     resolve_rockfall_parameters(run.options, run.table);
     run.options.inputs.run_rock = run.options.settings.rock;
-    gis::load_scene(run.options.inputs);
+    if (!s.detect_sources) gis::load_scene(run.options.inputs);  // detected sources: read by detect_sources()
     return run.options.intensity;
   }
   MudflowScenarioRun run;
@@ -122,7 +123,8 @@ nlohmann::json read_json(const std::filesystem::path& path) {
 // study.json: the study file, and per scenario its process, return period, folder and what its
 // run.json says of parameters, counts, problems and timings.
 nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choices, const std::vector<double>& seconds,
-                                    const StudyZoning& zoning, const nlohmann::ordered_json& hazard) {
+                                    const StudyZoning& zoning, const nlohmann::ordered_json& hazard,
+                                    const nlohmann::ordered_json& sources) {
   nlohmann::ordered_json record;
   record["talus_version"] = TALUS_VERSION;
   record["command_line"] = choices.command_line;
@@ -146,6 +148,7 @@ nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choi
     total += seconds[k];
   }
   record["scenarios"] = scenarios;
+  if (!sources.empty()) record["sources"] = sources;
   record["hazard"] = zoning.matrix ? hazard : nlohmann::ordered_json({{"note", zoning.note}});
   record["seconds"] = total;
   return record;
@@ -159,8 +162,9 @@ void check_study_folder(const std::filesystem::path& out) {
   if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string() + ": --out is a file, not a folder");
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
     const std::string name = entry.path().filename().string();
-    const bool ours = name == "scenarios" || name == "hazard" || name == "study.json" ||
-                      name.rfind(".study.json", 0) == 0 || name.rfind(".hazard.talus-", 0) == 0;
+    const bool ours = name == "scenarios" || name == "hazard" || name == "sources" || name == "study.json" ||
+                      name.rfind(".study.json", 0) == 0 || name.rfind(".hazard.talus-", 0) == 0 ||
+                      name.rfind(".sources.talus-", 0) == 0;
     if (!ours) {
       throw InputError(out.string() + ": --out holds files that are not a Talus study (" + name +
                        "); give a new or empty folder");
@@ -174,8 +178,21 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
   check_study_folder(choices.out);
   output.say("Checking " + std::to_string(study.scenarios.size()) + " scenarios of " + study.file.string() + " ...");
   std::vector<std::string> intensity;
-  for (const StudyScenario& s : study.scenarios) intensity.push_back(check_scenario(study, s, choices));
+  std::vector<std::optional<DetectedSources>> detected;
+  for (const StudyScenario& s : study.scenarios) {
+    intensity.push_back(check_scenario(study, s, choices));
+    detected.push_back(s.detect_sources ? std::optional(detect_sources(study, s)) : std::nullopt);
+    if (detected.back()) {
+      output.say(printf_text("Sources of %s from the slope: %zu cells steeper than %.1f degrees (%s)", s.name.c_str(),
+                             detected.back()->cells, detected.back()->threshold_deg,
+                             detected.back()->threshold_from_dem ? "the DEM's cliff threshold, Loye et al. 2009"
+                                                                 : "source_slope"));
+    }
+  }
   const StudyZoning zoning = study_zoning(study, intensity);
+  const bool any_detected = std::any_of(detected.begin(), detected.end(), [](const auto& d) { return d.has_value(); });
+  const nlohmann::ordered_json sources =
+      any_detected ? write_detected_sources(study, choices.out, choices.command_line, detected) : nlohmann::ordered_json();
   StudyProgress progress(output.progress, study.scenarios.size());
   std::vector<double> seconds;
   for (std::size_t k = 0; k < study.scenarios.size(); ++k) {
@@ -197,7 +214,7 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
   const std::filesystem::path partial = choices.out / ".study.json.partial";
   {
     std::ofstream file(partial);
-    file << study_record(study, choices, seconds, zoning, hazard).dump(2) << '\n';
+    file << study_record(study, choices, seconds, zoning, hazard, sources).dump(2) << '\n';
     if (!file) throw std::runtime_error("cannot write " + partial.string());
   }
   std::filesystem::rename(partial, record_path);

@@ -173,6 +173,52 @@ TEST(Study, TheHazardMapTakesEachCellsHighestDegreeOverTheScenarios) {
   EXPECT_EQ(high["cells"], std::count(both.begin(), both.end(), 4.0f));
 }
 
+// issue 19, item 1: release = "auto" finds the sources from the slope. On the sample scene,
+// lithology class 6 (bedrock) was made as the cells of Horn's slope >= 45 degrees
+// (sample_dem/README.md), so sources steeper than 45 degrees in class 6 are those cells; without
+// source_slope the DEM's own cliff threshold (Loye et al. 2009) applies.
+TEST(Study, AutomaticSourcesComeFromTheSlope) {
+  const fs::path folder = test::fresh_folder("study_sources");
+  const fs::path sample = test::source_dir() / "sample_dem";
+  const std::string inputs = "[inputs]\ndem = \"" + (sample / "dem.tif").string() + "\"\nlithology = \"" +
+                             (sample / "lithology.tif").string() + "\"\n";
+  const std::string scenario_tail = "return_period = 30\n[rockfall.run]\nruns = 2\n[rockfall.outputs]\nproject = \"off\"\n";
+  const fs::path study = write_study(folder, inputs +
+                                                 "[[rockfall]]\nname = \"bedrock\"\nrelease = \"auto\"\nsource_slope = 45\n"
+                                                 "source_lithology = [6]\n" + scenario_tail +
+                                                 "[[rockfall]]\nname = \"cliffs\"\nrelease = \"auto\"\n" + scenario_tail);
+  const test::ProgramResult run = test::run_talus({"study", study.string(), "--out", "out"}, folder);
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+
+  const std::vector<float> lithology = band(sample / "lithology.tif");
+  const std::vector<float> bedrock = band(folder / "out/sources/bedrock.tif");
+  std::size_t both = 0, lithology_only = 0, mask_only = 0;
+  for (std::size_t cell = 0; cell < bedrock.size(); ++cell) {
+    const bool rock = lithology[cell] == 6, source = bedrock[cell] == 1;
+    both += rock && source;
+    lithology_only += rock && !source;
+    mask_only += source && !rock;
+  }
+  EXPECT_EQ(mask_only, 0u);
+  EXPECT_GT(both, 2000u);
+  EXPECT_LT(lithology_only, both / 100 + 10) << "the DEM's edge cells have no slope, the rest agree";
+
+  std::ifstream record_file(folder / "out/study.json");
+  const nlohmann::json record = nlohmann::json::parse(record_file);
+  EXPECT_EQ(record["sources"]["bedrock"]["cells"], both);
+  const double threshold = record["sources"]["cliffs"]["threshold_deg"].get<double>();
+  EXPECT_GT(threshold, 50.0);  // the sample's cliff band: median slope 54 degrees
+  EXPECT_LT(threshold, 65.0);
+  const std::vector<float> cliffs = band(folder / "out/sources/cliffs.tif");
+  const auto cliff_cells = std::count(cliffs.begin(), cliffs.end(), 1.0f);
+  EXPECT_EQ(record["sources"]["cliffs"]["cells"], cliff_cells);
+  EXPECT_EQ(record["scenarios"][1]["counts"]["sources"], cliff_cells);
+  EXPECT_EQ(std::system(("/usr/bin/python3 " + (test::source_dir() / "tests/gis/qgis/check_layer_in_qgis.py").string() +
+                         " EPSG:31287 " + (folder / "out/sources/cliffs.tif").string() +
+                         " 'Potential rock-fall sources of cliffs'").c_str()),
+            0);
+}
+
 // Each bad study is refused before any scenario runs: one line naming the file and the key,
 // exit code 2, no output folder.
 TEST(Study, ABadStudyIsRefusedWithOneLineAndNothingWritten) {
@@ -188,6 +234,13 @@ TEST(Study, ABadStudyIsRefusedWithOneLineAndNothingWritten) {
       {sample_study() + "[[mudflow]]\nname = \"mud\"\nrelease = \"r.gpkg\"\nreturn_period = 10\n", "a second scenario"},
       {"[inputs]\ndem = \"dem.tif\"\n", "no scenario"},
       {"[hazard]\nrockfall_probability = \"max\"\n" + sample_study(), "use reach or onset"},
+      {sample_study("source_slope = 50\n"), "are for release = \"auto\""},
+      {replaced(sample_study("source_slope = 95\n"), (test::source_dir() / "sample_dem/rockfall_release.gpkg").string(),
+                "auto"),
+       "'source_slope' must be an angle of 1 to 89 degrees"},
+      {replaced(sample_study("source_slope = 89\n"), (test::source_dir() / "sample_dem/rockfall_release.gpkg").string(),
+                "auto"),
+       "no cell steeper than 89.0 degrees"},
       {replaced(sample_study(), "project = \"off\"\n[[mudflow]]", "project = \"off\"\nintensity = \"none\"\n[[mudflow]]"),
        "the hazard map needs every scenario's intensity"},
   };
