@@ -4,17 +4,21 @@ project and quicklooks").
 
 usage: run_project.py OUT_DIR PROCESS DEM [RELEASE]
 
-PROCESS is rockfall or mudflow. Writes into OUT_DIR:
+PROCESS is rockfall, mudflow or study. Writes into OUT_DIR:
 - project.qgz: every layer of the run styled (its .qml) under its title (its .qmd), grouped,
   over a hillshade of DEM, with the release layer and, for rock fall, the trajectories; only
   the intensity, the trajectories, the release and the hillshade are switched on.
 - quicklook/<layer>.png for the main layers: the layer over the hillshade, zoomed to the cells
   the process reached, with its legend, a scale bar and its title, drawn by QGIS's own layout
   renderer.
-Both are written under temporary names and renamed when complete. The talus program runs this
+For a study (`talus study`, docs/study.md), OUT_DIR is the study's folder: the project holds the
+hazard maps and zones (hazard/), then one group per scenario of study.json (its intensity and
+main layers, scenarios/NAME/), the detected sources (sources/) and the hillshade; the quicklook is
+quicklook/hazard.png. Both are written under temporary names and renamed when complete. The talus program runs this
 script on the staging folder of the run's set, before the commit, which OUT_DIR then is; it runs
 on Debian's /usr/bin/python3 (python3-qgis).
 """
+import json
 import os
 import shutil
 import sys
@@ -175,6 +179,86 @@ def quicklook(project, layer, heading, base_layers, extent, path):
     return root  # the legend's tree must outlive the export
 
 
+def add_raster(project, group, path, name, visible, layers):
+    """The layer at `path` (styled by its .qml) under its .qmd title in `group`."""
+    layer = QgsRasterLayer(path, name, "gdal")  # loads NAME.qml
+    if not layer.isValid():
+        raise RuntimeError(f"{path}: QGIS cannot open the layer")
+    layer.setName(title_of(layer, name))
+    project.addMapLayer(layer, False)
+    node = group.addLayer(layer)
+    QgsMapLayerLegendUtils.setLegendNodeUserLabel(node, 0, band_heading(path))
+    node.setItemVisibilityChecked(visible)
+    layers[name] = (layer, path)
+
+
+def finish(project, out, base, temporary_hillshade, quicklooks):
+    """Writes the quicklooks ([(layer, path, base layers)]) and the project, renaming each when
+    complete; the project names the hillshade by its final path, so it is renamed first."""
+    quicklook_dir = os.path.join(out, ".quicklook.part")
+    shutil.rmtree(quicklook_dir, ignore_errors=True)
+    os.makedirs(quicklook_dir)
+    keep = []
+    for name, (layer, path), base_layers in quicklooks:
+        keep.append(quicklook(project, layer, band_heading(path), base_layers, reached_extent(path),
+                              os.path.join(quicklook_dir, name + ".png")))
+    os.replace(temporary_hillshade, os.path.join(out, "hillshade.tif"))
+    base.setDataSource(os.path.join(out, "hillshade.tif"), "Hillshade", "gdal")
+    base.resampleFilter().setZoomedInResampler(QgsBilinearRasterResampler())
+    base.resampleFilter().setZoomedOutResampler(QgsBilinearRasterResampler())
+    temporary = os.path.join(out, ".project.part.qgz")
+    if not project.write(temporary):
+        raise RuntimeError(f"{temporary}: QGIS could not write the project: {project.error()}")
+    os.replace(temporary, os.path.join(out, "project.qgz"))
+    final_dir = os.path.join(out, "quicklook")
+    shutil.rmtree(final_dir, ignore_errors=True)
+    os.replace(quicklook_dir, final_dir)
+
+
+def build_study(out, dem_path):
+    """The study's project: hazard, then each scenario, the sources and the hillshade."""
+    with open(os.path.join(out, "study.json"), encoding="utf-8") as file:
+        study = json.load(file)
+    project = QgsProject.instance()
+    temporary_hillshade = os.path.join(out, ".hillshade.part.tif")
+    base = hillshade(dem_path, temporary_hillshade)
+    project.setCrs(base.crs())
+    root = project.layerTreeRoot()
+    layers = {}
+    hazard = root.addGroup("Hazard")
+    zones_path = os.path.join(out, "hazard", "hazard_zones.gpkg")
+    if os.path.exists(zones_path):
+        zones = QgsVectorLayer(zones_path + "|layername=hazard_zones", "Hazard zones", "ogr")  # loads its .qml
+        if zones.isValid():
+            project.addMapLayer(zones, False)
+            hazard.addLayer(zones).setItemVisibilityChecked(False)
+    for name in ["hazard", "hazard_rockfall", "hazard_mudflow"]:
+        path = os.path.join(out, "hazard", name + ".tif")
+        if os.path.exists(path):
+            add_raster(project, hazard, path, name, name == "hazard", layers)
+    for scenario in study["scenarios"]:
+        process = scenario["process"]
+        group = root.addGroup(f"{scenario['name']} ({PROCESS_WORDS[process].lower()}, "
+                              f"return period {scenario['return_period_years']:g} years)")
+        names = GROUPS[process][0][1] + GROUPS[process][1][1]  # intensity and the main layers
+        for name in names:
+            path = os.path.join(out, scenario["folder"], name + ".tif")
+            if os.path.exists(path):
+                add_raster(project, group, path, f"{scenario['name']}/{name}", False, layers)
+        group.setExpanded(False)
+    sources_dir = os.path.join(out, "sources")
+    if os.path.isdir(sources_dir):
+        group = root.addGroup("Rock-fall sources from the slope")
+        for file_name in sorted(os.listdir(sources_dir)):
+            if file_name.endswith(".tif"):
+                add_raster(project, group, os.path.join(sources_dir, file_name), "sources/" + file_name[:-4], False,
+                           layers)
+    project.addMapLayer(base, False)
+    root.addLayer(base)
+    quicklooks = [("hazard", layers["hazard"], [base])] if "hazard" in layers else []
+    finish(project, out, base, temporary_hillshade, quicklooks)
+
+
 def build(out, process, dem_path, release_path):
     project = QgsProject.instance()
     temporary_hillshade = os.path.join(out, ".hillshade.part.tif")
@@ -187,17 +271,8 @@ def build(out, process, dem_path, release_path):
         sub = group.addGroup(group_name)
         for name in names:
             path = os.path.join(out, name + ".tif")
-            if not os.path.exists(path):
-                continue
-            layer = QgsRasterLayer(path, name, "gdal")  # loads NAME.qml
-            if not layer.isValid():
-                raise RuntimeError(f"{path}: QGIS cannot open the layer")
-            layer.setName(title_of(layer, name))
-            project.addMapLayer(layer, False)
-            node = sub.addLayer(layer)
-            QgsMapLayerLegendUtils.setLegendNodeUserLabel(node, 0, band_heading(path))
-            node.setItemVisibilityChecked(group_name == "Intensity")
-            layers[name] = (layer, path)
+            if os.path.exists(path):
+                add_raster(project, sub, path, name, group_name == "Intensity", layers)
         sub.setExpanded(group_name == "Intensity")
     vectors = []
     trajectories = os.path.join(out, "trajectories.gpkg")
@@ -215,34 +290,13 @@ def build(out, process, dem_path, release_path):
     project.addMapLayer(base, False)
     root.addLayer(base)
 
-    quicklook_dir = os.path.join(out, ".quicklook.part")
-    shutil.rmtree(quicklook_dir, ignore_errors=True)
-    os.makedirs(quicklook_dir)
-    keep = []
-    for name in QUICKLOOKS[process]:
-        if name not in layers:
-            continue
-        layer, path = layers[name]
-        release = [v for v in vectors if v.name() == "Release"]
-        keep.append(quicklook(project, layer, band_heading(path), release + [base], reached_extent(path),
-                              os.path.join(quicklook_dir, name + ".png")))
-
-    # The project names the hillshade by its final path, so it is renamed first.
-    os.replace(temporary_hillshade, os.path.join(out, "hillshade.tif"))
-    base.setDataSource(os.path.join(out, "hillshade.tif"), "Hillshade", "gdal")
-    base.resampleFilter().setZoomedInResampler(QgsBilinearRasterResampler())
-    base.resampleFilter().setZoomedOutResampler(QgsBilinearRasterResampler())
-    temporary = os.path.join(out, ".project.part.qgz")
-    if not project.write(temporary):
-        raise RuntimeError(f"{temporary}: QGIS could not write the project: {project.error()}")
-    os.replace(temporary, os.path.join(out, "project.qgz"))
-    final_dir = os.path.join(out, "quicklook")
-    shutil.rmtree(final_dir, ignore_errors=True)
-    os.replace(quicklook_dir, final_dir)
+    release = [v for v in vectors if v.name() == "Release"]
+    quicklooks = [(name, layers[name], release + [base]) for name in QUICKLOOKS[process] if name in layers]
+    finish(project, out, base, temporary_hillshade, quicklooks)
 
 
 def main():
-    if len(sys.argv) not in (4, 5) or sys.argv[2] not in GROUPS:
+    if len(sys.argv) not in (4, 5) or sys.argv[2] not in list(GROUPS) + ["study"]:
         print(__doc__, file=sys.stderr)
         return 2
     out, process, dem = sys.argv[1:4]
@@ -250,7 +304,10 @@ def main():
     app = QgsApplication([], False)
     app.initQgis()
     try:
-        build(out, process, dem, release)
+        if process == "study":
+            build_study(out, dem)
+        else:
+            build(out, process, dem, release)
     except RuntimeError as error:
         print(f"project: {error}", file=sys.stderr)
         os._exit(1)

@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "job_output.hpp"
 #include "parameter_table.hpp"
+#include "run_project.hpp"
 #include "study_file.hpp"
 #include "study_job.hpp"
 #include "terminal_progress.hpp"
@@ -17,6 +18,7 @@ void add_study_command(CLI::App& app, Action& action, const std::vector<std::str
     std::filesystem::path file;
     StudyChoices choices;
     int threads = 0;
+    std::string project = "on";
   };
   auto o = std::make_shared<Options>();
   o->choices.command_line = command_line;
@@ -24,8 +26,11 @@ void add_study_command(CLI::App& app, Action& action, const std::vector<std::str
   cmd->add_option("file", o->file, "Study file (TOML): the region's inputs and its scenarios")->required();
   cmd->add_option("--out", o->choices.out, "Output folder: scenarios/NAME per scenario, study.json")->required();
   auto* threads = cmd->add_option("--threads", o->threads, "Threads of every scenario (default: its [run] threads, all cores)");
+  cmd->add_option("--project", o->project,
+                  "on (default): also write project.qgz, hillshade.tif and quicklook/hazard.png with QGIS; off");
   cmd->callback([o, &action, threads] {
     action = [o, threads] {
+      o->choices.project = project_wanted(o->project);
       if (threads->count() > 0) {
         if (o->threads < 0 || o->threads > kMaxThreads) {
           throw InputError("--threads " + std::to_string(o->threads) + ": expected 0 (all cores) to " +

@@ -96,14 +96,14 @@ nlohmann::ordered_json write_study_hazard(const Study& study, const StudyChoices
   }
   nlohmann::ordered_json maps = nlohmann::ordered_json::object();
   const auto add = [&](const Grid<float>& map, const std::string& name, const std::string& what) {
-    gis::LayerDescription layer{name, "Hazard degree, " + what + ", by " + matrix.guideline, ""};
+    gis::LayerDescription layer{name, "Hazard degree" + what + " (" + matrix.guideline + ")", ""};
     layer.style_qml = gis::hazard_style_qml(matrix);
     writer.add(map, layer);
     maps[name] = degree_counts(map, matrix);
   };
-  add(both, "hazard", "rock fall and mud flow");
-  if (rockfall) add(*rockfall, "hazard_rockfall", "rock fall");
-  if (mudflow) add(*mudflow, "hazard_mudflow", "mud flow");
+  add(both, "hazard", "");
+  if (rockfall) add(*rockfall, "hazard_rockfall", ", rock fall");
+  if (mudflow) add(*mudflow, "hazard_mudflow", ", mud flow");
   gis::add_hazard_zones(writer, both, matrix);
   nlohmann::ordered_json probabilities = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < matrix.probabilities.size(); ++k) {

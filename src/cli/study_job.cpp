@@ -11,7 +11,9 @@
 #include "mudflow_parameters.hpp"
 #include "rockfall_job.hpp"
 #include "rockfall_parameters.hpp"
+#include "run_project.hpp"
 #include "study_hazard.hpp"
+#include "study_report.hpp"
 #include "study_sources.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/scene.hpp"
@@ -144,6 +146,7 @@ nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choi
                          {"parameters", run["parameters"]},
                          {"counts", run["counts"]},
                          {"problems", run["problems"]},
+                         {"volumes_m3", run.value("volumes_m3", nlohmann::json())},
                          {"timings_s", run["timings_s"]}});
     total += seconds[k];
   }
@@ -162,9 +165,10 @@ void check_study_folder(const std::filesystem::path& out) {
   if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string() + ": --out is a file, not a folder");
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
     const std::string name = entry.path().filename().string();
+    // What a study writes, and the hidden files and staging folders it writes them through.
     const bool ours = name == "scenarios" || name == "hazard" || name == "sources" || name == "study.json" ||
-                      name.rfind(".study.json", 0) == 0 || name.rfind(".hazard.talus-", 0) == 0 ||
-                      name.rfind(".sources.talus-", 0) == 0;
+                      name == "report.md" || name == "project.qgz" || name == "hillshade.tif" ||
+                      name == "quicklook" || name.front() == '.';
     if (!ours) {
       throw InputError(out.string() + ": --out holds files that are not a Talus study (" + name +
                        "); give a new or empty folder");
@@ -210,16 +214,20 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
   } else {
     output.say("note: " + zoning.note);
   }
-  const std::filesystem::path record_path = choices.out / "study.json";
+  const nlohmann::ordered_json record = study_record(study, choices, seconds, zoning, hazard, sources);
   const std::filesystem::path partial = choices.out / ".study.json.partial";
   {
     std::ofstream file(partial);
-    file << study_record(study, choices, seconds, zoning, hazard, sources).dump(2) << '\n';
+    file << record.dump(2) << '\n';
     if (!file) throw std::runtime_error("cannot write " + partial.string());
   }
-  std::filesystem::rename(partial, record_path);
+  std::filesystem::rename(partial, choices.out / "study.json");
+  const std::string project_line =
+      write_project_if_wanted(choices.project, choices.out, choices.out, "study", study.inputs.dem, "");
+  write_study_report(record, choices.out);
+  if (!project_line.empty()) output.say(project_line);
   output.say("Study written to " + choices.out.string() + ": " + std::to_string(study.scenarios.size()) +
-             " scenarios under scenarios/, " + (zoning.matrix ? "the hazard map under hazard/, " : "") + "study.json");
+             " scenarios under scenarios/, " + (zoning.matrix ? "the hazard map under hazard/, " : "") + "study.json, report.md");
 }
 
 }  // namespace talus::cli

@@ -16,12 +16,14 @@ namespace talus::cli {
 struct StudyChoices {
   std::filesystem::path out;
   std::optional<int> threads;            // --threads: every scenario's [run] threads
+  bool project = true;                   // --project: project.qgz, hillshade.tif, quicklook/hazard.png
   std::vector<std::string> command_line;
 };
 
 // Checks every scenario's parameters and reads every scenario's inputs first (a bad one is
 // InputError with nothing written), then runs the scenarios in the file's order into
-// OUT/scenarios/NAME and writes OUT/study.json. A scenario that fails stops the study; the
+// OUT/scenarios/NAME, writes the hazard map, OUT/study.json, the QGIS project (when wanted) and
+// OUT/report.md. A scenario that fails stops the study; the
 // scenarios finished before it stay committed.
 void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output);
 

@@ -161,8 +161,8 @@ TEST(Study, TheHazardMapTakesEachCellsHighestDegreeOverTheScenarios) {
   const std::string qgis = "/usr/bin/python3 " + (test::source_dir() / "tests/gis/qgis").string();
   const std::string hazard = (folder / "out/hazard").string();
   EXPECT_EQ(std::system((qgis + "/check_layer_in_qgis.py EPSG:31287 " + hazard +
-                         "/hazard.tif 'Hazard degree, rock fall and mud flow, by foen-2016' " + hazard +
-                         "/hazard_mudflow.tif 'Hazard degree, mud flow, by foen-2016'").c_str()),
+                         "/hazard.tif 'Hazard degree (foen-2016)' " + hazard +
+                         "/hazard_mudflow.tif 'Hazard degree, mud flow (foen-2016)'").c_str()),
             0);
   EXPECT_EQ(std::system((qgis + "/check_zones_in_qgis.py EPSG:31287 " + hazard + "/hazard_zones.gpkg").c_str()), 0);
 
@@ -171,6 +171,24 @@ TEST(Study, TheHazardMapTakesEachCellsHighestDegreeOverTheScenarios) {
   const auto& high = record["hazard"]["maps"]["hazard"][0];
   EXPECT_EQ(high["name"], "high");
   EXPECT_EQ(high["cells"], std::count(both.begin(), both.end(), 4.0f));
+}
+
+// issue 19, item 7: with --project on, project.qgz holds the hazard map and a group per scenario
+// over the hillshade, quicklook/hazard.png shows the map, and report.md tabulates the study.
+TEST(Study, TheSummaryHasAProjectAQuicklookAndAReport) {
+  const fs::path folder = test::fresh_folder("study_summary");
+  const fs::path study = write_study(folder, sample_study());
+  const test::ProgramResult run = test::run_talus({"study", study.string(), "--out", "out", "--project", "on"}, folder);
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_EQ(std::system(("/usr/bin/python3 " + (test::source_dir() / "tests/gis/qgis/check_run_project.py").string() +
+                         " " + (folder / "out").string() + " study hazard").c_str()),
+            0);
+  std::ifstream report_file(folder / "out/report.md");
+  const std::string report((std::istreambuf_iterator<char>(report_file)), std::istreambuf_iterator<char>());
+  for (const char* needed : {"# Hazard study: study.toml", "![Hazard map](quicklook/hazard.png)", "| high |",
+                             "| blocks | rockfall | 30 |", "| mud | mudflow | 100 |", "## Problems"}) {
+    EXPECT_NE(report.find(needed), std::string::npos) << needed << "\n" << report;
+  }
 }
 
 // issue 19, item 1: release = "auto" finds the sources from the slope. On the sample scene,

@@ -31,7 +31,7 @@ ProgramResult run_talus(const std::vector<std::string>& arguments, const std::fi
   const auto capture = working_folder.parent_path() / ("capture-" + working_folder.filename().string());
   std::filesystem::create_directories(capture);
   std::string command = "cd " + quoted(working_folder.string()) + " && " + quoted(talus_exe().string());
-  const bool simulates = !arguments.empty() && (arguments[0] == "rockfall" || arguments[0] == "mudflow");
+  const bool simulates = !arguments.empty() && (arguments[0] == "rockfall" || arguments[0] == "mudflow" || arguments[0] == "study");
   const bool project_off = simulates && std::ranges::find(arguments, "--project") == arguments.end();
   for (std::size_t k = 0; k < arguments.size(); ++k) {
     command += " " + quoted(arguments[k]);

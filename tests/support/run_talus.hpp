@@ -13,7 +13,7 @@ struct ProgramResult {
   std::string err;   // stderr
 };
 
-// A rockfall or mudflow run gets `--project off` unless its arguments name --project: the QGIS
+// A rockfall, mudflow or study run gets `--project off` unless its arguments name --project: the QGIS
 // project and quicklooks take seconds per run, and tests/cli/run_project_test.cpp tests them.
 ProgramResult run_talus(const std::vector<std::string>& arguments, const std::filesystem::path& working_folder);
 

@@ -5,9 +5,12 @@ usage: check_run_project.py OUT_DIR PROCESS LAYER [LAYER ...]
 
 The project reads; every layer in it is valid; it holds each LAYER (a file stem) under its .qmd
 title, the hillshade and the release, in the process's group; the hillshade lies at the bottom;
+for PROCESS study (`talus study`), the group is Hazard, there is no release, and each scenario of
+OUT_DIR/study.json has a group named after it;
 quicklook/LAYER.png exists for each LAYER given and is not blank (it holds the layer's colours
 and the hillshade's greys, not one flat colour). Prints one line per problem; exit 0 when none.
 """
+import json
 import os
 import sys
 
@@ -17,7 +20,7 @@ os.environ["GDAL_PAM_ENABLED"] = "NO"
 from qgis.core import QgsApplication, QgsProject  # noqa: E402
 from qgis.PyQt.QtGui import QImage  # noqa: E402
 
-GROUP = {"rockfall": "Rock fall", "mudflow": "Mud flow"}
+GROUP = {"rockfall": "Rock fall", "mudflow": "Mud flow", "study": "Hazard"}
 
 
 def quicklook_problems(path):
@@ -71,7 +74,14 @@ def main():
         if group is not None and group.findLayer(layer.id()) is None:
             problems.append(f"{name}: not in the group '{GROUP[process]}'")
         problems += quicklook_problems(os.path.join(out, "quicklook", name + ".png"))
-    for needed in ("hillshade", "Release"):
+    if process == "study":
+        with open(os.path.join(out, "study.json"), encoding="utf-8") as file:
+            scenarios = [s["name"] for s in json.load(file)["scenarios"]]
+        groups = [g.name() for g in project.layerTreeRoot().children() if g.nodeType() == 0]
+        for name in scenarios:
+            if not any(g.startswith(name + " (") for g in groups):
+                problems.append(f"no group for the scenario {name} (groups: {groups})")
+    for needed in ("hillshade",) if process == "study" else ("hillshade", "Release"):
         if not any(needed.lower() in (layer.name() + layer.source()).lower() for layer in layers):
             problems.append(f"no {needed} layer in the project")
     bottom = project.layerTreeRoot().layerOrder()[-1] if layers else None
