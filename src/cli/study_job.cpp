@@ -15,6 +15,7 @@
 #include "study_hazard.hpp"
 #include "study_report.hpp"
 #include "study_sources.hpp"
+#include "study_units.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/scene.hpp"
 #include "talus/gis/staged_folder.hpp"
@@ -84,16 +85,34 @@ void set_up(Run& run, const Study& study, const StudyScenario& s, const StudyCho
   }
 }
 
+// What checking a scenario tells the study: its [outputs] intensity, and the record its layers
+// depend on (study_units.hpp).
+struct CheckedScenario {
+  std::string intensity;
+  nlohmann::ordered_json unit;
+};
+
+// The files a scenario reads, for its unit record.
+template <typename Options>
+std::vector<std::filesystem::path> input_files(const Options& o, const StudyScenario& s) {
+  std::vector<std::filesystem::path> files = {o.inputs.dem, o.inputs.lithology, o.inputs.vegetation, o.inputs.materials,
+                                              o.inputs.erodible, o.scenario};
+  if (!s.detect_sources) files.push_back(o.inputs.release);
+  if (std::filesystem::path(o.intensity).extension() == ".toml") files.push_back(o.intensity);
+  return files;
+}
+
 // What a run of `s` resolves and reads before any work: every parameter, the scene and its release
-// (unless the study finds its sources); returns the scenario's [outputs] intensity.
-std::string check_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices) {
+// (unless the study finds its sources).
+CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices) {
   if (s.process == StudyProcess::rockfall) {
     RockfallScenarioRun run;
     set_up(run, study, s, choices);
     resolve_rockfall_parameters(run.options, run.table);
     run.options.inputs.run_rock = run.options.settings.rock;
     if (!s.detect_sources) gis::load_scene(run.options.inputs);  // detected sources: read by detect_sources()
-    return run.options.intensity;
+    return {run.options.intensity, unit_record(s, nlohmann::ordered_json::parse(run.table.values().dump()),
+                                               input_files(run.options, s))};
   }
   MudflowScenarioRun run;
   set_up(run, study, s, choices);
@@ -101,7 +120,8 @@ std::string check_scenario(const Study& study, const StudyScenario& s, const Stu
   resolve_mudflow_parameters(run.options, run.table, false);
   run.options.inputs.release_needs_depth = true;
   gis::load_scene(run.options.inputs);
-  return run.options.intensity;
+  return {run.options.intensity,
+          unit_record(s, nlohmann::ordered_json::parse(run.table.values().dump()), input_files(run.options, s))};
 }
 
 void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices, const JobOutput& output) {
@@ -182,9 +202,12 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
   check_study_folder(choices.out);
   output.say("Checking " + std::to_string(study.scenarios.size()) + " scenarios of " + study.file.string() + " ...");
   std::vector<std::string> intensity;
+  std::vector<nlohmann::ordered_json> units;
   std::vector<std::optional<DetectedSources>> detected;
   for (const StudyScenario& s : study.scenarios) {
-    intensity.push_back(check_scenario(study, s, choices));
+    CheckedScenario checked = check_scenario(study, s, choices);
+    intensity.push_back(checked.intensity);
+    units.push_back(std::move(checked.unit));
     detected.push_back(s.detect_sources ? std::optional(detect_sources(study, s)) : std::nullopt);
     if (detected.back()) {
       output.say(printf_text("Sources of %s from the slope: %zu cells steeper than %.1f degrees (%s)", s.name.c_str(),
@@ -205,7 +228,12 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
     output.say("Scenario " + std::to_string(k + 1) + " of " + std::to_string(study.scenarios.size()) + ": " + s.name +
                " (" + to_string(s.process) + ", return period " + printf_text("%g", s.return_period_years) + " years)");
     const auto start = Clock::now();
-    run_scenario(study, s, choices, JobOutput{[&](const std::string& line) { output.say("  " + line); }, progress});
+    if (unit_done(choices.out, s, units[k])) {
+      output.say("  already done: its layers were computed from the same parameters and inputs (resumed)");
+    } else {
+      run_scenario(study, s, choices, JobOutput{[&](const std::string& line) { output.say("  " + line); }, progress});
+      mark_unit_done(choices.out, s, units[k]);
+    }
     seconds.push_back(seconds_since(start));
   }
   nlohmann::ordered_json hazard;

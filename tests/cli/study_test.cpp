@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -189,6 +190,44 @@ TEST(Study, TheSummaryHasAProjectAQuicklookAndAReport) {
                              "| blocks | rockfall | 30 |", "| mud | mudflow | 100 |", "## Problems"}) {
     EXPECT_NE(report.find(needed), std::string::npos) << needed << "\n" << report;
   }
+}
+
+// issue 19, item 5: a study killed (SIGKILL) at random moments and run again to the end gives the
+// layers of an uninterrupted run, bit for bit, and a finished study run again computes nothing.
+TEST(Study, AStudyKilledAtRandomMomentsResumesToTheSameLayers) {
+  const fs::path folder = test::fresh_folder("study_resume");
+  const std::string text = replaced(sample_study(), "runs = 3", "runs = 60");
+  const fs::path study = write_study(folder, text);
+  ASSERT_EQ(test::run_talus({"study", study.string(), "--out", "whole"}, folder).exit_code, 0);
+
+  const auto run_until_killed = [&](double seconds) {
+    const std::string command = "cd '" + folder.string() + "' && timeout -s KILL " + std::to_string(seconds) + " '" +
+                                test::talus_exe().string() + "' study '" + study.string() +
+                                "' --out resumed --project off >/dev/null 2>&1";
+    std::system(command.c_str());
+  };
+  std::mt19937 random(19);  // fixed: the same kill moments on every run of the test
+  std::uniform_real_distribution<double> moment(0.05, 1.5);  // s: within the first scenario (about 2 s)
+  run_until_killed(moment(random));
+  run_until_killed(moment(random));
+  // Kills later and later, until the first scenario was committed before one of them.
+  for (double seconds = 1.0; seconds < 20.0 && !fs::exists(folder / "resumed/.units/blocks.json"); seconds += 0.7) {
+    run_until_killed(seconds);
+  }
+  ASSERT_TRUE(fs::exists(folder / "resumed/.units/blocks.json"));
+  run_until_killed(moment(random));
+  const test::ProgramResult last = test::run_talus({"study", study.string(), "--out", "resumed"}, folder);
+  ASSERT_EQ(last.exit_code, 0) << last.out << last.err;
+  EXPECT_NE(last.out.find("already done"), std::string::npos) << last.out;  // the committed scenario is kept
+  for (const char* layer : {"scenarios/blocks/reach_probability.tif", "scenarios/blocks/energy_p95.tif",
+                            "scenarios/blocks/passages.tif", "scenarios/mud/flow_depth_max.tif",
+                            "scenarios/mud/deposit_depth.tif", "hazard/hazard.tif"}) {
+    EXPECT_EQ(band(folder / "resumed" / layer), band(folder / "whole" / layer)) << layer;
+  }
+  const test::ProgramResult again = test::run_talus({"study", study.string(), "--out", "resumed"}, folder);
+  ASSERT_EQ(again.exit_code, 0);
+  EXPECT_EQ(again.out.find("trajectories in"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("already done"), std::string::npos) << again.out;
 }
 
 // issue 19, item 1: release = "auto" finds the sources from the slope. On the sample scene,

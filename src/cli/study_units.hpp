@@ -1,0 +1,31 @@
+// Resuming a study (issue 19, item 5; docs/study.md, "Resume"): each scenario is a unit of work,
+// committed whole by its layer set; once committed, DIR/.units/NAME.json records what it was
+// computed from. A rerun of the same study skips each unit whose record matches what it would
+// compute now, and the layers stay bit for bit those of an uninterrupted run, because a scenario's
+// layers depend only on what the record holds.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "study_file.hpp"
+
+namespace talus::cli {
+
+// What a scenario's layers depend on: the Talus version, the resolved parameters without the
+// thread count (the layers do not depend on it), and the SHA-256 of every input file; for sources
+// found from the slope, the DEM's and lithology's checksums with the source keys stand for the
+// release.
+nlohmann::ordered_json unit_record(const StudyScenario& s, nlohmann::ordered_json parameters,
+                                   const std::vector<std::filesystem::path>& inputs);
+
+// True when OUT/scenarios/NAME holds a committed set and OUT/.units/NAME.json equals `record`.
+bool unit_done(const std::filesystem::path& out, const StudyScenario& s, const nlohmann::ordered_json& record);
+
+// Writes OUT/.units/NAME.json (under a temporary name, renamed) after the scenario's set is committed.
+void mark_unit_done(const std::filesystem::path& out, const StudyScenario& s, const nlohmann::ordered_json& record);
+
+}  // namespace talus::cli
