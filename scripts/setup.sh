@@ -10,7 +10,7 @@ packages=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   python3-gdal python3-matplotlib python3-numpy python3-qgis qgis qgis-providers
   openmpi-bin libopenmpi-dev
-  clang libomp-dev libclang-rt-14-dev xvfb
+  clang libomp-dev libclang-rt-14-dev xvfb time
 )
 
 missing=()
