@@ -1,19 +1,23 @@
 // Fuzz target: intensity guideline TOML files (--intensity FILE.toml, docs/hazard-statistics.md,
 // "Intensity classes"): the guideline read for rock fall and for mud flow, its QGIS style, and its
-// classes applied to small layers of every name its thresholds use.
+// classes applied to small layers of every name its thresholds use; its hazard matrix
+// (docs/study.md, "Hazard map") with its style, applied to the classified layers.
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <string>
 
 #include "fuzz_input.hpp"
 #include "intensity_guidelines.hpp"
+#include "talus/gis/hazard_zones_writer.hpp"
 #include "talus/gis/intensity_style.hpp"
+#include "talus/hazard/hazard_matrix.hpp"
 
 namespace {
 
 // Classifies a 2 x 2 grid whose cells run from nothing to far above any threshold.
-void classify_small_layers(const talus::IntensityScheme& scheme) {
+talus::Grid<float> classify_small_layers(const talus::IntensityScheme& scheme) {
   talus::GridSpec spec;
   spec.width = 2;
   spec.height = 2;
@@ -27,7 +31,7 @@ void classify_small_layers(const talus::IntensityScheme& scheme) {
       }
     }
   }
-  talus::classify_intensity(scheme, layers);
+  return talus::classify_intensity(scheme, layers);
 }
 
 }  // namespace
@@ -38,7 +42,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     talus::fuzz::refused_or_read([&] {
       const talus::IntensityScheme scheme = talus::cli::intensity_scheme(path.string(), process);
       talus::gis::intensity_style_qml(scheme);
-      classify_small_layers(scheme);
+      const talus::Grid<float> intensity = classify_small_layers(scheme);
+      if (const auto matrix = talus::cli::hazard_matrix(path.string())) {
+        talus::gis::hazard_style_qml(*matrix);
+        talus::Grid<float> hazard(intensity.spec(), 0.0f);
+        for (const double years : {1.0, 30.0, 1e6}) {
+          try {
+            talus::raise_hazard(hazard, *matrix, scheme, intensity, years);
+          } catch (const std::invalid_argument&) {  // a class without a row: talus study refuses it first
+          }
+        }
+      }
     });
   }
   return 0;

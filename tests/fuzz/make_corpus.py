@@ -85,6 +85,18 @@ def intensity():
          'when = ["flow_depth_max > 1 and velocity_max > 1", "flow_depth_max * velocity_max > 1"]\n')
 
 
+def studies():
+    folder = CORPUS / "study"
+    folder.mkdir(parents=True, exist_ok=True)
+    shutil.copy(ROOT / "sample_dem" / "study.toml", folder / "sample.toml")
+    shutil.copy(ROOT / "docs" / "examples" / "tirol_alr.study.toml", folder / "tirol_alr.toml")
+    text("study", "auto.toml", '[inputs]\ndem = "dem.tif"\n[hazard]\nrockfall_probability = "onset"\n\n'
+         '[[rockfall]]\nname = "cliffs"\nrelease = "auto"\nsource_slope = 50\nsource_lithology = [5, 6]\n'
+         'annual_frequency = 0.1\n[rockfall.run]\nruns = 5\n')
+    text("study", "bad_name.toml", '[inputs]\ndem = "dem.tif"\n[[mudflow]]\nname = "../x"\nrelease = "r.gpkg"\n'
+         'return_period = 0\n')
+
+
 def rasters():
     slope = [[1500.0 - 4 * c - 6 * r for c in range(4)] for r in range(4)]
     raster("raster", "dem.tif", slope, (X0, 40.0, 0, TOP, 0, -40.0))
@@ -118,6 +130,7 @@ def releases():
 
 if __name__ == "__main__":
     scenario()
+    studies()
     materials()
     intensity()
     rasters()
