@@ -18,7 +18,6 @@
 #include "study_units.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/scene.hpp"
-#include "talus/gis/staged_folder.hpp"
 
 namespace talus::cli {
 namespace {
