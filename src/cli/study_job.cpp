@@ -103,7 +103,8 @@ std::vector<std::filesystem::path> input_files(const Options& o, const StudyScen
 
 // What a run of `s` resolves and reads before any work: every parameter, the scene and its release
 // (unless the study finds its sources).
-CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices) {
+CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices,
+                               FileChecksums& checksums) {
   if (s.process == StudyProcess::rockfall) {
     RockfallScenarioRun run;
     set_up(run, study, s, choices);
@@ -111,7 +112,7 @@ CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const
     run.options.inputs.run_rock = run.options.settings.rock;
     if (!s.detect_sources) gis::load_scene(run.options.inputs);  // detected sources: read by detect_sources()
     return {run.options.intensity, unit_record(s, nlohmann::ordered_json::parse(run.table.values().dump()),
-                                               input_files(run.options, s))};
+                                               input_files(run.options, s), checksums)};
   }
   MudflowScenarioRun run;
   set_up(run, study, s, choices);
@@ -120,7 +121,8 @@ CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const
   run.options.inputs.release_needs_depth = true;
   gis::load_scene(run.options.inputs);
   return {run.options.intensity,
-          unit_record(s, nlohmann::ordered_json::parse(run.table.values().dump()), input_files(run.options, s))};
+          unit_record(s, nlohmann::ordered_json::parse(run.table.values().dump()), input_files(run.options, s),
+                      checksums)};
 }
 
 void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices, const JobOutput& output) {
@@ -203,11 +205,14 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
   std::vector<std::string> intensity;
   std::vector<nlohmann::ordered_json> units;
   std::vector<std::optional<DetectedSources>> detected;
+  std::optional<SlopeAnalysis> slopes;  // read once, for the first scenario that finds its sources
+  FileChecksums checksums;
   for (const StudyScenario& s : study.scenarios) {
-    CheckedScenario checked = check_scenario(study, s, choices);
+    CheckedScenario checked = check_scenario(study, s, choices, checksums);
     intensity.push_back(checked.intensity);
     units.push_back(std::move(checked.unit));
-    detected.push_back(s.detect_sources ? std::optional(detect_sources(study, s)) : std::nullopt);
+    if (s.detect_sources && !slopes) slopes = analyse_slopes(study);
+    detected.push_back(s.detect_sources ? std::optional(detect_sources(*slopes, s)) : std::nullopt);
     if (detected.back()) {
       output.say(printf_text("Sources of %s from the slope: %zu cells steeper than %.1f degrees (%s)", s.name.c_str(),
                              detected.back()->cells, detected.back()->threshold_deg,

@@ -30,13 +30,18 @@ nlohmann::ordered_json units_json(const std::array<SlopeUnit, 4>& units) {
 
 }  // namespace
 
-DetectedSources detect_sources(const Study& study, const StudyScenario& s) {
+SlopeAnalysis analyse_slopes(const Study& study) {
   gis::SceneInputs inputs = study.inputs;
   inputs.release.clear();
-  const gis::Scene scene = gis::load_scene(inputs);
-  const Grid<float> slopes = slope_angles(scene.dem.elevation);
+  gis::Scene scene = gis::load_scene(inputs);
+  SlopeAnalysis analysis{slope_angles(scene.dem.elevation), {}, std::move(scene.lithology)};
+  analysis.units = slope_units(analysis.slopes);
+  return analysis;
+}
+
+DetectedSources detect_sources(const SlopeAnalysis& analysis, const StudyScenario& s) {
   DetectedSources found;
-  found.units = slope_units(slopes);
+  found.units = analysis.units;
   if (s.source_slope) {
     found.threshold_deg = *s.source_slope;
     found.threshold_from_dem = false;
@@ -48,7 +53,7 @@ DetectedSources detect_sources(const Study& study, const StudyScenario& s) {
     }
     found.threshold_deg = *threshold;
   }
-  found.mask = source_mask(slopes, found.threshold_deg, scene.lithology, s.source_lithology);
+  found.mask = source_mask(analysis.slopes, found.threshold_deg, analysis.lithology, s.source_lithology);
   found.cells = static_cast<std::size_t>(std::count(found.mask.values().begin(), found.mask.values().end(), 1.0f));
   if (found.cells == 0) {
     throw InputError(s.where + ": release = \"auto\": no cell steeper than " + printf_text("%.1f", found.threshold_deg) +

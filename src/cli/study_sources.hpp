@@ -25,9 +25,18 @@ struct DetectedSources {
   std::size_t cells = 0;
 };
 
-// The sources of `s` (detect_sources) on the study's DEM and lithology; InputError naming the
-// scenario when none are found or the distribution has no cliff unit and no source_slope is given.
-DetectedSources detect_sources(const Study& study, const StudyScenario& s);
+// The study's slope angles, their decomposition and the lithology, computed once for all the
+// scenarios that find their sources.
+struct SlopeAnalysis {
+  Grid<float> slopes;               // degrees (Horn)
+  std::array<SlopeUnit, 4> units;   // the slope angle distribution's decomposition
+  Grid<int> lithology;              // class per cell, as the runs read it
+};
+SlopeAnalysis analyse_slopes(const Study& study);
+
+// The sources of `s` (detect_sources) from the study's slopes; InputError naming the scenario when
+// none are found or the distribution has no cliff unit and no source_slope is given.
+DetectedSources detect_sources(const SlopeAnalysis& analysis, const StudyScenario& s);
 
 // The release raster a scenario with detected sources runs from.
 std::filesystem::path detected_sources_path(const std::filesystem::path& out, const StudyScenario& s);

@@ -15,16 +15,20 @@ std::filesystem::path unit_path(const std::filesystem::path& out, const StudySce
 }  // namespace
 
 nlohmann::ordered_json unit_record(const StudyScenario& s, nlohmann::ordered_json parameters,
-                                   const std::vector<std::filesystem::path>& inputs) {
+                                   const std::vector<std::filesystem::path>& inputs, FileChecksums& checksums) {
   if (parameters.contains("run")) parameters["run"].erase("threads");
-  nlohmann::ordered_json checksums = nlohmann::ordered_json::object();
+  nlohmann::ordered_json files = nlohmann::ordered_json::object();
   for (const std::filesystem::path& input : inputs) {
-    if (!input.empty()) checksums[std::filesystem::absolute(input).string()] = gis::sha256_of_file(input);
+    if (input.empty()) continue;
+    const std::filesystem::path absolute = std::filesystem::absolute(input);
+    auto known = checksums.find(absolute);
+    if (known == checksums.end()) known = checksums.emplace(absolute, gis::sha256_of_file(input)).first;
+    files[absolute.string()] = known->second;
   }
   nlohmann::ordered_json record = {{"talus_version", TALUS_VERSION},
                                    {"process", to_string(s.process)},
                                    {"parameters", parameters},
-                                   {"inputs", checksums}};
+                                   {"inputs", files}};
   if (s.detect_sources) {
     record["sources"] = {{"source_slope", s.source_slope ? nlohmann::ordered_json(*s.source_slope) : nullptr},
                          {"source_lithology", s.source_lithology}};

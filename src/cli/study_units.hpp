@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,10 @@ namespace talus::cli {
 // thread count (the layers do not depend on it), and the SHA-256 of every input file; for sources
 // found from the slope, the DEM's and lithology's checksums with the source keys stand for the
 // release.
+// `checksums` keeps each file's SHA-256 once computed, so the region's DEM is read once a study.
+using FileChecksums = std::map<std::filesystem::path, std::string>;
 nlohmann::ordered_json unit_record(const StudyScenario& s, nlohmann::ordered_json parameters,
-                                   const std::vector<std::filesystem::path>& inputs);
+                                   const std::vector<std::filesystem::path>& inputs, FileChecksums& checksums);
 
 // True when OUT/scenarios/NAME holds a committed set and OUT/.units/NAME.json equals `record`.
 bool unit_done(const std::filesystem::path& out, const StudyScenario& s, const nlohmann::ordered_json& record);
