@@ -13,6 +13,7 @@
 
 #include "intensity_guidelines_text.hpp"
 #include "talus/core/errors.hpp"
+#include "toml_file.hpp"
 
 namespace talus::cli {
 namespace {
@@ -140,12 +141,7 @@ ChosenGuideline chosen_guideline(const std::string& choice) {
   }
   ChosenGuideline chosen;
   chosen.origin = path.string() + " (intensity guideline)";
-  try {
-    chosen.file = toml::parse_file(path.string());
-  } catch (const toml::parse_error& error) {
-    throw InputError(chosen.origin + ": line " + std::to_string(error.source().begin.line) + ": " +
-                     std::string(error.description()));
-  }
+  chosen.file = read_toml_file(path, chosen.origin);
   chosen.name = chosen.file["default"].value<std::string>().value_or("");
   if (chosen.name.empty()) {
     const auto names = guideline_names(chosen.file);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "talus/core/errors.hpp"
+#include "toml_file.hpp"
 
 namespace talus::cli {
 namespace {
@@ -202,14 +203,7 @@ void ParameterTable::apply(const toml::table& sections, Origin origin, const std
 
 void ParameterTable::apply_scenario(const std::filesystem::path& scenario, const std::vector<std::string>& ignored_sections) {
   const std::string name = scenario.string() + " (scenario)";
-  std::error_code ec;
-  if (!std::filesystem::exists(scenario, ec)) throw InputError(name + ": file not found");
-  toml::table table;
-  try {
-    table = toml::parse_file(scenario.string());
-  } catch (const toml::parse_error& e) {
-    throw InputError(name + ": line " + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
-  }
+  toml::table table = read_toml_file(scenario, name);
   for (const std::string& section : ignored_sections) table.erase(section);
   apply(table, Origin::scenario, name);
 }

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "talus/core/errors.hpp"
+#include "toml_file.hpp"
 
 namespace talus::cli {
 namespace {
@@ -129,14 +130,7 @@ const char* to_string(StudyProcess process) { return process == StudyProcess::ro
 
 Study read_study(const std::filesystem::path& file) {
   const std::string name = file.string() + " (study)";
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) throw InputError(name + ": file not found");
-  toml::table root;
-  try {
-    root = toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw InputError(name + ": line " + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
-  }
+  const toml::table root = read_toml_file(file, name);
   Study study;
   study.file = file;
   const std::filesystem::path folder = file.parent_path();
@@ -177,7 +171,7 @@ Study read_study(const std::filesystem::path& file) {
   study.inputs.crs = text_key(*inputs, "crs", where, false);
   std::set<std::string> names;
   for (const StudyProcess process : {StudyProcess::rockfall, StudyProcess::mudflow}) {
-    const toml::node_view<toml::node> list = root[to_string(process)];
+    const toml::node_view<const toml::node> list = root[to_string(process)];
     if (!list) continue;
     const toml::array* array = list.as_array();
     if (array == nullptr || !array->is_array_of_tables()) {

@@ -201,7 +201,9 @@ void check_study_folder(const std::filesystem::path& out) {
 
 void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output) {
   check_study_folder(choices.out);
-  output.say("Checking " + std::to_string(study.scenarios.size()) + " scenarios of " + study.file.string() + " ...");
+  const std::string count =
+      std::to_string(study.scenarios.size()) + (study.scenarios.size() == 1 ? " scenario" : " scenarios");
+  output.say("Checking " + count + " of " + study.file.string() + " ...");
   std::vector<std::string> intensity;
   std::vector<nlohmann::ordered_json> units;
   std::vector<std::optional<DetectedSources>> detected;
@@ -258,8 +260,7 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
       write_project_if_wanted(choices.project, choices.out, choices.out, "study", study.inputs.dem, "");
   write_study_report(record, choices.out);
   if (!project_line.empty()) output.say(project_line);
-  output.say("Study written to " + choices.out.string() + ": " + std::to_string(study.scenarios.size()) +
-             " scenarios under scenarios/, " + (zoning.matrix ? "the hazard map under hazard/, " : "") + "study.json, report.md");
+  output.say("Study written to " + choices.out.string() + ": " + count + " under scenarios/, " + (zoning.matrix ? "the hazard map under hazard/, " : "") + "study.json, report.md");
 }
 
 }  // namespace talus::cli
