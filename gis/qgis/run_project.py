@@ -12,8 +12,9 @@ PROCESS is rockfall, mudflow or study. Writes into OUT_DIR:
   the process reached, with its legend, a scale bar and its title, drawn by QGIS's own layout
   renderer.
 For a study (`talus study`, docs/study.md), OUT_DIR is the study's folder: the project holds the
-hazard maps and zones (hazard/), then one group per scenario of study.json (its intensity and
-main layers, scenarios/NAME/), the detected sources (sources/) and the hillshade; the quicklook is
+hazard maps and zones (hazard/), the region's layers (region/PROCESS/: the envelope of each
+process's scenarios), then one group per scenario of study.json (its intensity and main layers,
+scenarios/NAME/), the detected sources (sources/) and the hillshade; the quicklook is
 quicklook/hazard.png. Both are written under temporary names and renamed when complete. The talus program runs this
 script on the staging folder of the run's set, before the commit, which OUT_DIR then is; it runs
 on Debian's /usr/bin/python3 (python3-qgis).
@@ -216,7 +217,7 @@ def finish(project, out, base, temporary_hillshade, quicklooks):
 
 
 def build_study(out, dem_path):
-    """The study's project: hazard, then each scenario, the sources and the hillshade."""
+    """The study's project: hazard, the region, then each scenario, the sources and the hillshade."""
     with open(os.path.join(out, "study.json"), encoding="utf-8") as file:
         study = json.load(file)
     project = QgsProject.instance()
@@ -236,6 +237,12 @@ def build_study(out, dem_path):
         path = os.path.join(out, "hazard", name + ".tif")
         if os.path.exists(path):
             add_raster(project, hazard, path, name, name == "hazard", layers)
+    for process, entry in study.get("region", {}).items():
+        group = root.addGroup(f"Region: {PROCESS_WORDS[process].lower()}, envelope of its scenarios")
+        for name in entry["layers"]:
+            add_raster(project, group, os.path.join(out, entry["folder"], name + ".tif"), f"region/{process}/{name}",
+                       False, layers)
+        group.setExpanded(False)
     for scenario in study["scenarios"]:
         process = scenario["process"]
         group = root.addGroup(f"{scenario['name']} ({PROCESS_WORDS[process].lower()}, "

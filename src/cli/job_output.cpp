@@ -12,6 +12,11 @@ void print_line(const std::string& line) {
   std::fflush(stdout);
 }
 
+std::function<void(const std::string&)> rank_say(bool root) {
+  if (root) return print_line;
+  return [](const std::string&) {};
+}
+
 std::string printf_text(const char* format, ...) {
   va_list arguments;
   va_start(arguments, format);

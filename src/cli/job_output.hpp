@@ -19,6 +19,10 @@ struct JobOutput {
 // The subcommands' `say`: the line on stdout, flushed, so that it comes before the progress.
 void print_line(const std::string& line);
 
+// The subcommands' `say` on this rank (process_ranks.hpp): print_line on rank 0, nothing on the
+// others.
+std::function<void(const std::string&)> rank_say(bool root);
+
 // printf's formatting into a string, for the lines a job says.
 std::string printf_text(const char* format, ...) __attribute__((format(printf, 1, 2)));
 

@@ -13,7 +13,8 @@
 
 namespace talus::cli {
 
-void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line) {
+void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line,
+                          const ProcessRanks& ranks) {
   auto o = std::make_shared<RockfallOptions>();
   o->command_line = command_line;
   auto table = std::make_shared<ParameterTable>(rockfall_parameter_table(*o));
@@ -43,7 +44,7 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
       ->check(whole_number());
   auto* project = cmd->add_option("--project", o->project,
                                   "on (default): also write project.qgz, hillshade.tif and quicklook/*.png with QGIS; off");
-  cmd->callback([o, table, &action, mode, runs, shape, size, density, seed, threads, intensity, project] {
+  cmd->callback([o, table, &action, &ranks, mode, runs, shape, size, density, seed, threads, intensity, project] {
     const std::pair<CLI::Option*, const char*> flags[] = {{mode, "run.mode"},    {runs, "run.runs"},
                                                           {seed, "run.seed"},    {threads, "run.threads"},
                                                           {shape, "rock.shape"},
@@ -54,9 +55,9 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
       const std::string name(key);
       table->pin(name.substr(0, name.find('.')), name.substr(name.find('.') + 1), option->get_name());
     }
-    action = [o, table] {
-      TerminalProgress progress;
-      rockfall_job(*o, *table, JobOutput{print_line, progress});
+    action = [o, table, &ranks] {
+      TerminalProgress progress(ranks.root());
+      rockfall_job(*o, *table, JobOutput{rank_say(ranks.root()), progress}, ranks);
       return 0;
     };
   });

@@ -23,6 +23,7 @@
 #include "talus/rockfall/fast_bounce.hpp"
 #include "talus/rockfall/full_model.hpp"
 #include "talus/rockfall/monte_carlo.hpp"
+#include "talus/rockfall/rockfall_shares.hpp"
 
 namespace talus::cli {
 namespace {
@@ -82,36 +83,72 @@ std::string single_trajectory_command(const std::vector<std::string>& command_li
   return text + " --only-source " + std::to_string(source) + " --only-run " + std::to_string(run);
 }
 
-// run_rockfall, with a failing trajectory's error extended by the command that reproduces it.
+// run_rockfall, with a failing trajectory's error extended by the command that reproduces it
+// (ordered by its source and run, so that of several MPI ranks' failures the earliest is told).
 RockfallResult run_trajectories(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
                                 const TrajectoryModel& model, const RockfallOptions& o, Progress& progress) {
   try {
     return run_rockfall(ground, sources, model, o.settings, &progress);
   } catch (const TrajectoryFailure& failure) {
-    throw NumericalFailure(std::string(failure.what()) + "; nothing was written; to rerun that trajectory alone: " +
-                           single_trajectory_command(o.command_line, failure.source, failure.run));
+    throw OrderedFailure(std::string(failure.what()) + "; nothing was written; to rerun that trajectory alone: " +
+                             single_trajectory_command(o.command_line, failure.source, failure.run),
+                         {failure.source, failure.run});
   }
 }
 
-}  // namespace
+// The scene read and checked, before any trajectory.
+struct RockfallScene {
+  RunChoices choices;
+  gis::Scene scene;
+  GroundModel ground;
+  std::vector<ReleaseSource> sources;
+};
 
-void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& output) {
-  const auto [intensity, project] = resolve_rockfall_parameters(o, table);
-  // The output folder is checked and staged before any work (issue 18, item 3).
-  gis::LayerWriter writer(o.out, {{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", scenario_text(o)}});
-
-  const auto start = std::chrono::steady_clock::now();
-  gis::RunRecord record;
-  record.set_command_line(o.command_line);
+RockfallScene read_rockfall_scene(RockfallOptions& o, RunChoices choices) {
   o.inputs.run_rock = o.settings.rock;
-  const gis::Scene scene = gis::load_scene(o.inputs);
-  const GroundModel ground = scene.ground_model();
-  const std::vector<ReleaseSource> sources = release_sources(*scene.release);
+  gis::Scene scene = gis::load_scene(o.inputs);
+  GroundModel ground = scene.ground_model();
+  std::vector<ReleaseSource> sources = release_sources(*scene.release);
   const std::optional<std::uint64_t>& only_source = o.settings.only_source;
   if (only_source && *only_source >= sources.size()) {
     throw InputError("--only-source " + std::to_string(*only_source) + ": sources are numbered 0 to " +
                      std::to_string(sources.size() - 1) + " (" + o.inputs.release.string() + ")");
   }
+  return {std::move(choices), std::move(scene), std::move(ground), std::move(sources)};
+}
+
+// This rank's share of the trajectories; on rank 0, every rank's shares joined (rockfall_shares.hpp).
+std::optional<RockfallResult> simulate_shares(const RockfallScene& r, const TrajectoryModel& model, RockfallOptions& o,
+                                              Progress& progress, const ProcessRanks& ranks) {
+  o.settings.share = {static_cast<std::uint32_t>(ranks.rank()), static_cast<std::uint32_t>(ranks.size())};
+  std::optional<RockfallResult> share;
+  together(ranks, [&] { share = run_trajectories(r.ground, r.sources, model, o, progress); });
+  if (ranks.size() == 1) return share;
+  const std::vector<std::vector<std::uint8_t>> messages = ranks.gather(encode_share(*share));
+  if (!ranks.root()) return std::nullopt;
+  std::vector<RockfallResult> shares;
+  for (const auto& bytes : messages) shares.push_back(decode_share(bytes, r.ground.elevation_grid()));
+  return join_shares(std::move(shares), o.settings);
+}
+
+}  // namespace
+
+void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& output, const ProcessRanks& ranks) {
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<gis::LayerWriter> staged;
+  std::optional<RockfallScene> read;
+  together(ranks, [&] {
+    RunChoices choices = resolve_rockfall_parameters(o, table);
+    // The output folder is checked and staged before any work (issue 18, item 3), by rank 0.
+    if (ranks.root()) staged.emplace(o.out, std::map<std::string, std::string>{{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", scenario_text(o)}});
+    read = read_rockfall_scene(o, std::move(choices));
+  });
+  const auto& [intensity, project] = read->choices;
+  const gis::Scene& scene = read->scene;
+  const GroundModel& ground = read->ground;
+  const std::vector<ReleaseSource>& sources = read->sources;
+  gis::RunRecord record;
+  record.set_command_line(o.command_line);
   const double read_seconds = seconds_since(start);
   for (const auto& note : scene.notes) output.say("note: " + note);
   for (const auto& problem : scene.problems) output.say("problem: " + problem);
@@ -126,8 +163,11 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
 
   const auto simulate_start = std::chrono::steady_clock::now();
   const std::unique_ptr<TrajectoryModel> model = trajectory_model(o);
-  const RockfallResult result = run_trajectories(ground, sources, *model, o, output.progress);
+  const std::optional<RockfallResult> joined = simulate_shares(*read, *model, o, output.progress, ranks);
+  if (!ranks.root()) return;  // rank 0 writes
+  const RockfallResult& result = *joined;
   const double simulate_seconds = seconds_since(simulate_start);
+  gis::LayerWriter& writer = *staged;
 
   const auto write_start = std::chrono::steady_clock::now();
   const nlohmann::json intensity_entry = write_layers_with_intensity(writer, rockfall_hazard_layers(result.statistics.layers()), intensity);
@@ -146,6 +186,7 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   }
   record.set("seed", o.settings.seed);
   record.set("threads", result.threads);
+  record.set("mpi_ranks", ranks.size());
   const auto sources_with_attributes =
       std::count_if(sources.begin(), sources.end(), [](const ReleaseSource& s) { return !s.conditions.empty(); });
   record.set("counts", {{"sources", sources.size()},
@@ -175,9 +216,11 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
       write_project_if_wanted(project, writer.staging_folder(), o.out, "rockfall", o.inputs.dem, o.inputs.release);
   writer.commit();
 
-  std::string summary = printf_text("%llu trajectories in %.2f s (%.0f per second, %d threads); stopped: ",
+  const std::string workers = ranks.size() == 1 ? printf_text("%d threads", result.threads)
+                                                : printf_text("%d MPI ranks x %d threads", ranks.size(), result.threads);
+  std::string summary = printf_text("%llu trajectories in %.2f s (%.0f per second, %s); stopped: ",
                                      static_cast<unsigned long long>(result.trajectories), simulate_seconds,
-                                     static_cast<double>(result.trajectories) / std::max(simulate_seconds, 1e-9), result.threads);
+                                     static_cast<double>(result.trajectories) / std::max(simulate_seconds, 1e-9), workers.c_str());
   for (std::size_t r = 0; r < result.stop_counts.size(); ++r) {
     summary += printf_text("%s%s %llu", r ? ", " : "", to_string(static_cast<StopReason>(r)),
                            static_cast<unsigned long long>(result.stop_counts[r]));

@@ -13,7 +13,8 @@
 
 namespace talus::cli {
 
-void add_study_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line) {
+void add_study_command(CLI::App& app, Action& action, const std::vector<std::string>& command_line,
+                       const ProcessRanks& ranks) {
   struct Options {
     std::filesystem::path file;
     StudyChoices choices;
@@ -28,8 +29,8 @@ void add_study_command(CLI::App& app, Action& action, const std::vector<std::str
   auto* threads = cmd->add_option("--threads", o->threads, "Threads of every scenario (default: its [run] threads, all cores)");
   cmd->add_option("--project", o->project,
                   "on (default): also write project.qgz, hillshade.tif and quicklook/hazard.png with QGIS; off");
-  cmd->callback([o, &action, threads] {
-    action = [o, threads] {
+  cmd->callback([o, &action, &ranks, threads] {
+    action = [o, &ranks, threads] {
       o->choices.project = project_wanted(o->project);
       if (threads->count() > 0) {
         if (o->threads < 0 || o->threads > kMaxThreads) {
@@ -39,8 +40,8 @@ void add_study_command(CLI::App& app, Action& action, const std::vector<std::str
         o->choices.threads = o->threads;
       }
       const Study study = read_study(o->file);
-      TerminalProgress progress;
-      study_job(study, o->choices, JobOutput{print_line, progress});
+      TerminalProgress progress(ranks.root());
+      study_job(study, o->choices, JobOutput{rank_say(ranks.root()), progress}, ranks);
       return 0;
     };
   });

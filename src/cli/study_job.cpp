@@ -13,6 +13,7 @@
 #include "rockfall_parameters.hpp"
 #include "run_project.hpp"
 #include "study_hazard.hpp"
+#include "study_region.hpp"
 #include "study_report.hpp"
 #include "study_sources.hpp"
 #include "study_units.hpp"
@@ -125,17 +126,22 @@ CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const
                       checksums)};
 }
 
-void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices, const JobOutput& output) {
+// A rock fall's sources are shared among the ranks; a mud flow runs on rank 0 while the others wait.
+void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices, const JobOutput& output,
+                  const ProcessRanks& ranks) {
   if (s.process == StudyProcess::rockfall) {
     RockfallScenarioRun run;
     set_up(run, study, s, choices);
-    rockfall_job(run.options, run.table, output);
-  } else {
+    rockfall_job(run.options, run.table, output, ranks);
+    return;
+  }
+  together(ranks, [&] {
+    if (!ranks.root()) return;
     MudflowScenarioRun run;
     set_up(run, study, s, choices);
     run.options.inputs.erodible = s.erodible;
     mudflow_job(run.options, run.table, false, output);
-  }
+  });
 }
 
 nlohmann::json read_json(const std::filesystem::path& path) {
@@ -147,7 +153,7 @@ nlohmann::json read_json(const std::filesystem::path& path) {
 // run.json says of parameters, counts, problems and timings.
 nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choices, const std::vector<double>& seconds,
                                     const StudyZoning& zoning, const nlohmann::ordered_json& hazard,
-                                    const nlohmann::ordered_json& sources) {
+                                    const nlohmann::ordered_json& region, const nlohmann::ordered_json& sources) {
   nlohmann::ordered_json record;
   record["talus_version"] = TALUS_VERSION;
   record["command_line"] = choices.command_line;
@@ -174,6 +180,7 @@ nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choi
   record["scenarios"] = scenarios;
   if (!sources.empty()) record["sources"] = sources;
   record["hazard"] = zoning.matrix ? hazard : nlohmann::ordered_json({{"note", zoning.note}});
+  record["region"] = region;
   record["seconds"] = total;
   return record;
 }
@@ -187,7 +194,7 @@ void check_study_folder(const std::filesystem::path& out) {
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
     const std::string name = entry.path().filename().string();
     // What a study writes, and the hidden files and staging folders it writes them through.
-    const bool ours = name == "scenarios" || name == "hazard" || name == "sources" || name == "study.json" ||
+    const bool ours = name == "scenarios" || name == "hazard" || name == "region" || name == "sources" || name == "study.json" ||
                       name == "report.md" || name == "project.qgz" || name == "hillshade.tif" ||
                       name == "quicklook" || name.front() == '.';
     if (!ours) {
@@ -197,22 +204,25 @@ void check_study_folder(const std::filesystem::path& out) {
   }
 }
 
-}  // namespace
-
-void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output) {
-  check_study_folder(choices.out);
-  const std::string count =
-      std::to_string(study.scenarios.size()) + (study.scenarios.size() == 1 ? " scenario" : " scenarios");
-  output.say("Checking " + count + " of " + study.file.string() + " ...");
-  std::vector<std::string> intensity;
+// What the study checked before any scenario runs: each scenario's unit record, the zoning, and the record of the sources it found (written by rank 0).
+struct CheckedStudy {
   std::vector<nlohmann::ordered_json> units;
+  std::optional<StudyZoning> zoning;
+  nlohmann::ordered_json sources;
+};
+
+CheckedStudy check_study(const Study& study, const StudyChoices& choices, const JobOutput& output,
+                         const ProcessRanks& ranks) {
+  check_study_folder(choices.out);
+  CheckedStudy checked;
+  std::vector<std::string> intensity;
   std::vector<std::optional<DetectedSources>> detected;
   std::optional<SlopeAnalysis> slopes;  // read once, for the first scenario that finds its sources
   FileChecksums checksums;
   for (const StudyScenario& s : study.scenarios) {
-    CheckedScenario checked = check_scenario(study, s, choices, checksums);
-    intensity.push_back(checked.intensity);
-    units.push_back(std::move(checked.unit));
+    CheckedScenario scenario = check_scenario(study, s, choices, checksums);
+    intensity.push_back(scenario.intensity);
+    checked.units.push_back(std::move(scenario.unit));
     if (s.detect_sources && !slopes) slopes = analyse_slopes(study);
     detected.push_back(s.detect_sources ? std::optional(detect_sources(*slopes, s)) : std::nullopt);
     if (detected.back()) {
@@ -222,10 +232,26 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
                                                                  : "source_slope"));
     }
   }
-  const StudyZoning zoning = study_zoning(study, intensity);
+  checked.zoning = study_zoning(study, intensity);
+  // Rank 0 writes the sources; every rank reads them in its scenarios' runs.
   const bool any_detected = std::any_of(detected.begin(), detected.end(), [](const auto& d) { return d.has_value(); });
-  const nlohmann::ordered_json sources =
-      any_detected ? write_detected_sources(study, choices.out, choices.command_line, detected) : nlohmann::ordered_json();
+  if (any_detected && ranks.root()) {
+    checked.sources = write_detected_sources(study, choices.out, choices.command_line, detected);
+  }
+  return checked;
+}
+
+}  // namespace
+
+void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output, const ProcessRanks& ranks) {
+  const std::string count =
+      std::to_string(study.scenarios.size()) + (study.scenarios.size() == 1 ? " scenario" : " scenarios");
+  output.say("Checking " + count + " of " + study.file.string() + " ...");
+  CheckedStudy checked;
+  together(ranks, [&] { checked = check_study(study, choices, output, ranks); });
+  const std::vector<nlohmann::ordered_json>& units = checked.units;
+  const StudyZoning& zoning = *checked.zoning;
+  const nlohmann::ordered_json& sources = checked.sources;
   StudyProgress progress(output.progress, study.scenarios.size());
   std::vector<double> seconds;
   for (std::size_t k = 0; k < study.scenarios.size(); ++k) {
@@ -234,21 +260,24 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
     output.say("Scenario " + std::to_string(k + 1) + " of " + std::to_string(study.scenarios.size()) + ": " + s.name +
                " (" + to_string(s.process) + ", return period " + printf_text("%g", s.return_period_years) + " years)");
     const auto start = Clock::now();
-    if (unit_done(choices.out, s, units[k])) {
+    if (rank0_decides(ranks, ranks.root() && unit_done(choices.out, s, units[k]))) {
       output.say("  already done: its layers were computed from the same parameters and inputs (resumed)");
     } else {
-      run_scenario(study, s, choices, JobOutput{[&](const std::string& line) { output.say("  " + line); }, progress});
-      mark_unit_done(choices.out, s, units[k]);
+      run_scenario(study, s, choices, JobOutput{[&](const std::string& line) { output.say("  " + line); }, progress},
+                   ranks);
+      if (ranks.root()) mark_unit_done(choices.out, s, units[k]);
     }
     seconds.push_back(seconds_since(start));
   }
+  if (!ranks.root()) return;  // rank 0 writes the study's own files
   nlohmann::ordered_json hazard;
   if (zoning.matrix) {
     hazard = write_study_hazard(study, choices, zoning, output);
   } else {
     output.say("note: " + zoning.note);
   }
-  const nlohmann::ordered_json record = study_record(study, choices, seconds, zoning, hazard, sources);
+  const nlohmann::ordered_json region = write_region_layers(study, choices, output);
+  const nlohmann::ordered_json record = study_record(study, choices, seconds, zoning, hazard, region, sources);
   const std::filesystem::path partial = choices.out / ".study.json.partial";
   {
     std::ofstream file(partial);
@@ -260,7 +289,8 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
       write_project_if_wanted(choices.project, choices.out, choices.out, "study", study.inputs.dem, "");
   write_study_report(record, choices.out);
   if (!project_line.empty()) output.say(project_line);
-  output.say("Study written to " + choices.out.string() + ": " + count + " under scenarios/, " + (zoning.matrix ? "the hazard map under hazard/, " : "") + "study.json, report.md");
+  output.say("Study written to " + choices.out.string() + ": " + count + " under scenarios/, " +
+             (zoning.matrix ? "the hazard map under hazard/, " : "") + "the region layers under region/, study.json, report.md");
 }
 
 }  // namespace talus::cli

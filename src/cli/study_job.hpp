@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "job_output.hpp"
+#include "process_ranks.hpp"
 #include "study_file.hpp"
 
 namespace talus::cli {
@@ -25,6 +26,9 @@ struct StudyChoices {
 // OUT/scenarios/NAME, writes the hazard map, OUT/study.json, the QGIS project (when wanted) and
 // OUT/report.md. A scenario that fails stops the study; the
 // scenarios finished before it stay committed.
-void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output);
+// Among MPI ranks, the ranks share every rock-fall scenario's sources (rockfall_job.hpp), rank 0
+// alone runs the mud flows and writes; OUT must be on a file system every rank sees.
+void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output,
+               const ProcessRanks& ranks = single_process());
 
 }  // namespace talus::cli

@@ -8,12 +8,14 @@ namespace talus::cli {
 
 class TerminalProgress final : public Progress {
  public:
-  TerminalProgress();   // installs the SIGINT handler
+  // Installs the SIGINT handler; `shown` false: prints nothing (MPI ranks other than 0).
+  explicit TerminalProgress(bool shown = true);
   ~TerminalProgress() override;
   void report(double fraction_done, const std::string& phase) override;
   bool cancelled() const override;
 
  private:
+  bool shown_;
   int last_percent_ = -1;
 };
 

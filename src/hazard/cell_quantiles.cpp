@@ -57,4 +57,25 @@ std::size_t CellQuantiles::memory_bytes() const {
   return bytes;
 }
 
+void CellQuantiles::write(ByteWriter& out) const {
+  out.put<std::uint64_t>(size());
+  out.put<std::uint64_t>(histograms_.size());
+  for (std::size_t i = 0; i < histograms_.size(); ++i) {
+    out.put(cells_[i]);
+    histograms_[i].write(out);
+  }
+}
+
+void CellQuantiles::read(ByteReader& in) {
+  if (in.get<std::uint64_t>() != size() || !histograms_.empty()) {
+    throw std::runtime_error("rank message: quantiles of another grid");
+  }
+  const std::uint64_t reached = in.get<std::uint64_t>();
+  for (std::uint64_t i = 0; i < reached; ++i) {
+    const auto cell = in.get<std::uint32_t>();
+    if (cell >= size() || slot_[cell] != no_histogram) throw std::runtime_error("rank message: a cell outside the grid");
+    new_histogram(cell).read(in);
+  }
+}
+
 }  // namespace talus

@@ -105,4 +105,23 @@ std::span<const SourceInterval> CellSourceSets::intervals(std::size_t cell) cons
   return sets_[slot - 1];
 }
 
+void CellSourceSets::write(ByteWriter& out) const {
+  out.put<std::uint64_t>(size());
+  out.put<std::uint64_t>(sets_.size());
+  for (std::size_t i = 0; i < sets_.size(); ++i) {
+    out.put(cells_[i]);
+    out.put_vector(sets_[i]);
+  }
+}
+
+void CellSourceSets::read(ByteReader& in) {
+  if (in.get<std::uint64_t>() != size() || !sets_.empty()) throw std::runtime_error("rank message: source sets of another grid");
+  const std::uint64_t reached = in.get<std::uint64_t>();
+  for (std::uint64_t i = 0; i < reached; ++i) {
+    const auto cell = in.get<std::uint32_t>();
+    if (cell >= size() || slot_[cell] != no_set) throw std::runtime_error("rank message: a cell outside the grid");
+    in.get_vector(set(cell));
+  }
+}
+
 }  // namespace talus

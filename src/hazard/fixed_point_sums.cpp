@@ -53,4 +53,14 @@ void FixedPointSums::merge(const FixedPointSums& other) {
   }
 }
 
+void FixedPointSums::write(ByteWriter& out) const {
+  out.put<std::uint8_t>(saturated_ ? 1 : 0);
+  out.put_sparse(sums_);
+}
+
+void FixedPointSums::read(ByteReader& in) {
+  saturated_ = in.get<std::uint8_t>() != 0;
+  in.get_sparse(sums_);
+}
+
 }  // namespace talus

@@ -84,4 +84,18 @@ double LogHistogram::quantile(double q, const LogBinning& binning) const {
   return binning.max();
 }
 
+void LogHistogram::write(ByteWriter& out) const {
+  out.put(first_);
+  out.put(underflow_);
+  out.put(overflow_);
+  out.put_vector(counts_);
+}
+
+void LogHistogram::read(ByteReader& in) {
+  first_ = in.get<std::int32_t>();
+  underflow_ = in.get<std::uint32_t>();
+  overflow_ = in.get<std::uint32_t>();
+  in.get_vector(counts_);
+}
+
 }  // namespace talus

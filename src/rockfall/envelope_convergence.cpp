@@ -114,6 +114,21 @@ void EnvelopeGrid::add(const EnvelopeField& field) {
   }
 }
 
+void EnvelopeGrid::merge(const EnvelopeGrid& other) {
+  reach_.merge(other.reach_);
+  energy_.merge(other.energy_);
+}
+
+void EnvelopeGrid::write(ByteWriter& out) const {
+  reach_.write(out);
+  energy_.write(out);
+}
+
+void EnvelopeGrid::read(ByteReader& in) {
+  reach_.read(in);
+  energy_.read(in);
+}
+
 EnvelopeField EnvelopeGrid::field() const {
   EnvelopeField out;
   for (std::size_t cell = 0; cell < reach_.size(); ++cell) {

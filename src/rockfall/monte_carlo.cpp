@@ -216,15 +216,18 @@ struct Chunk {
 class SourceBatches {
  public:
   SourceBatches(const RockfallSettings& settings, std::size_t source_count, std::size_t cells)
-      : settings_(settings), rule_(settings), half_(rule_.tested() ? cells : 0), all_(rule_.tested() ? cells : 0),
-        runs_by_source_(source_count, 0) {
+      : settings_(settings), rule_(settings), sums_(rule_.tested() ? cells : 0), runs_by_source_(source_count, 0) {
     for (std::uint64_t source = 0; source < source_count; ++source) {
       if (settings.only_source && *settings.only_source != source) continue;
       SourceState& state = states_.emplace_back();
       state.source = source;
       state.done = rule_.first_run();
     }
-    for (std::size_t position = 0; position < states_.size(); ++position) open_batch(position, rule_.first_end());
+    for (std::size_t position = 0; position < states_.size(); ++position) {
+      if (!settings.share.owns(position)) continue;
+      open_batch(position, rule_.first_end());
+      ++owned_;
+    }
   }
 
   const BatchRule& rule() const { return rule_; }
@@ -275,22 +278,16 @@ class SourceBatches {
   // Sources finished plus, for each unfinished one, the share of its planned runs done: 0 .. 1.
   double fraction_done() {
     const std::lock_guard<std::mutex> lock(mutex_);
-    return states_.empty() ? 1.0 : credit_ / static_cast<double>(states_.size());
+    return owned_ == 0 ? 1.0 : credit_ / static_cast<double>(owned_);
   }
 
   std::vector<std::uint64_t> runs_by_source() const { return runs_by_source_; }
 
-  std::optional<ConvergenceReport> report() const {
+  // The convergence sums of the sources this process simulated; none when untested.
+  std::optional<ConvergenceSums> take_sums() {
     if (!rule_.tested()) return std::nullopt;
-    ConvergenceReport report;
-    report.change = envelope_change(half_.field(), all_.field());
-    report.converged = envelope_converged(report.change, settings_.convergence.tolerance);
-    report.sources = states_.size();
-    report.sources_converged = sources_converged_;
-    report.sources_at_limit = sources_at_limit_;
-    report.run_limit = settings_.auto_runs ? rule_.limit() : 0;
-    report.runs_suggested = suggested_runs(rule_.limit(), report.change, settings_.convergence.tolerance);
-    return report;
+    sums_.sources = owned_;
+    return std::move(sums_);
   }
 
  private:
@@ -338,11 +335,11 @@ class SourceBatches {
   // A source without further batches: its envelopes join the whole run's. Under the lock.
   void finish_source(SourceState& state) {
     if (rule_.tested()) {
-      half_.add(per_run(state.previous, state.previous_runs));
-      all_.add(per_run(state.envelope, state.done));
+      sums_.half.add(per_run(state.previous, state.previous_runs));
+      sums_.all.add(per_run(state.envelope, state.done));
       const bool converged = envelope_converged(state.change, settings_.convergence.tolerance);
-      sources_converged_ += converged ? 1 : 0;
-      sources_at_limit_ += settings_.auto_runs && !converged ? 1 : 0;
+      sums_.sources_converged += converged ? 1 : 0;
+      sums_.sources_at_limit += settings_.auto_runs && !converged ? 1 : 0;
     }
     runs_by_source_[state.source] = settings_.only_run ? 1 : state.done;
     credit_ += 1.0 - static_cast<double>(runs_by_source_[state.source]) / static_cast<double>(rule_.planned_runs());
@@ -352,9 +349,9 @@ class SourceBatches {
   const RockfallSettings& settings_;
   BatchRule rule_;
   std::vector<SourceState> states_;
-  EnvelopeGrid half_, all_;  // the whole run's maps before and after each source's last doubling
+  std::size_t owned_ = 0;     // sources of settings.share
+  ConvergenceSums sums_;
   std::vector<std::uint64_t> runs_by_source_;
-  std::uint64_t sources_converged_ = 0, sources_at_limit_ = 0;
   std::priority_queue<Chunk, std::vector<Chunk>, std::greater<>> queue_;
   std::mutex mutex_;
   std::condition_variable wake_;
@@ -380,6 +377,19 @@ std::vector<ReleaseSource> release_sources(const ReleaseSet& release) {
   return sources;
 }
 
+ConvergenceReport convergence_report(const ConvergenceSums& sums, const RockfallSettings& settings) {
+  const BatchRule rule(settings);
+  ConvergenceReport report;
+  report.change = envelope_change(sums.half.field(), sums.all.field());
+  report.converged = envelope_converged(report.change, settings.convergence.tolerance);
+  report.sources = sums.sources;
+  report.sources_converged = sums.sources_converged;
+  report.sources_at_limit = sums.sources_at_limit;
+  report.run_limit = settings.auto_runs ? rule.limit() : 0;
+  report.runs_suggested = suggested_runs(rule.limit(), report.change, settings.convergence.tolerance);
+  return report;
+}
+
 RockfallResult run_rockfall(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
                             const TrajectoryModel& model, const RockfallSettings& settings, Progress* progress) {
   SourceBatches batches(settings, sources.size(), ground.elevation_grid().size());
@@ -389,7 +399,7 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       settings.saved_trajectories == 0 ? 0 : std::max<std::uint64_t>(1, (sampled + settings.saved_trajectories - 1) / settings.saved_trajectories);
   const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
 
-  RockfallResult result{RockfallStatistics(ground.elevation_grid()), {}, std::vector<std::uint64_t>(4, 0), {}, 0, threads, 0, {}, std::nullopt};
+  RockfallResult result{RockfallStatistics(ground.elevation_grid()), {}, std::vector<std::uint64_t>(4, 0), {}, 0, threads, 0, {}, std::nullopt, std::nullopt};
   std::vector<std::pair<RunKey, double>> runouts;
   std::atomic<bool> cancelled{false};
   // A run that throws (NumericalFailure: exit code 3) ends them all; the earliest such run's
@@ -480,7 +490,8 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
   for (const auto& [key, length] : runouts) result.runouts.push_back(length);
   result.trajectories = runouts.size();
   result.runs_by_source = batches.runs_by_source();
-  result.convergence = batches.report();
+  result.convergence_sums = batches.take_sums();
+  if (result.convergence_sums) result.convergence = convergence_report(*result.convergence_sums, settings);
   if (progress != nullptr) progress->report(1.0, "trajectories");
   return result;
 }

@@ -84,6 +84,36 @@ void RockfallStatistics::merge(const RockfallStatistics& other) {
   a.deformation.merge(b.deformation);
 }
 
+void RockfallStatistics::write(ByteWriter& out) const {
+  const Accumulators& a = *accumulators_;
+  out.put(a.rocks);
+  out.put_vector(a.rocks_per_source);
+  a.passages.write(out);
+  a.sources.write(out);
+  a.deposits.write(out);
+  a.energy_max.write(out);
+  a.velocity_max.write(out);
+  a.energy.write(out);
+  a.jump_height.write(out);
+  a.friction.write(out);
+  a.deformation.write(out);
+}
+
+void RockfallStatistics::read(ByteReader& in) {
+  Accumulators& a = *accumulators_;
+  a.rocks = in.get<std::uint64_t>();
+  in.get_vector(a.rocks_per_source);
+  a.passages.read(in);
+  a.sources.read(in);
+  a.deposits.read(in);
+  a.energy_max.read(in);
+  a.velocity_max.read(in);
+  a.energy.read(in);
+  a.jump_height.read(in);
+  a.friction.read(in);
+  a.deformation.read(in);
+}
+
 std::uint64_t RockfallStatistics::rocks() const { return accumulators_->rocks; }
 
 RockfallLayers RockfallStatistics::layers() const {

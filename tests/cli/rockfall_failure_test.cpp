@@ -28,16 +28,6 @@ std::vector<std::string> case_arguments(const fs::path& out, const std::string& 
           "--runs", "3", "--out", out.string()};
 }
 
-// The lines of stderr that are errors (progress lines are not).
-std::vector<std::string> error_lines(const std::string& err) {
-  std::vector<std::string> lines;
-  std::istringstream text(err);
-  for (std::string line; std::getline(text, line);) {
-    if (line.rfind("talus: error:", 0) == 0) lines.push_back(line);
-  }
-  return lines;
-}
-
 std::vector<std::string> words(const std::string& text) {
   std::vector<std::string> result;
   std::istringstream in(text);
@@ -62,7 +52,7 @@ TEST_F(RockfallFailure, StopsWritesNothingAndNamesTheCommandThatReproducesIt) {
   arguments.insert(arguments.end(), {"--scenario", (root_ / "failing.toml").string()});
   const test::ProgramResult result = test::run_talus(arguments, root_);
   EXPECT_EQ(result.exit_code, 3) << result.err;
-  const std::vector<std::string> errors = error_lines(result.err);
+  const std::vector<std::string> errors = test::error_lines(result.err);
   ASSERT_EQ(errors.size(), 1u) << result.err;
   const std::string& line = errors.front();
   EXPECT_NE(line.find("blow-up not recovered by smaller steps"), std::string::npos) << line;
@@ -81,7 +71,7 @@ TEST_F(RockfallFailure, StopsWritesNothingAndNamesTheCommandThatReproducesIt) {
   rerun.erase(rerun.begin());  // the program's path: run_talus adds the built one
   const test::ProgramResult again = test::run_talus(rerun, root_);
   EXPECT_EQ(again.exit_code, 3) << again.err;
-  const std::vector<std::string> again_errors = error_lines(again.err);
+  const std::vector<std::string> again_errors = test::error_lines(again.err);
   ASSERT_EQ(again_errors.size(), 1u) << again.err;
   EXPECT_EQ(again_errors.front(), line);
   EXPECT_FALSE(fs::exists(root_ / "out"));
@@ -131,7 +121,7 @@ TEST_F(RockfallFailure, OnlySourceOrRunBeyondTheRunIsRefused) {
     arguments.insert(arguments.end(), {flag, value});
     const test::ProgramResult result = test::run_talus(arguments, root_);
     EXPECT_EQ(result.exit_code, 2) << flag;
-    const std::vector<std::string> errors = error_lines(result.err);
+    const std::vector<std::string> errors = test::error_lines(result.err);
     ASSERT_EQ(errors.size(), 1u) << result.err;
     EXPECT_NE(errors.front().find(flag), std::string::npos) << errors.front();
     EXPECT_FALSE(fs::exists(root_ / "refused"));

@@ -167,8 +167,20 @@ TEST(Study, TheHazardMapTakesEachCellsHighestDegreeOverTheScenarios) {
             0);
   EXPECT_EQ(std::system((qgis + "/check_zones_in_qgis.py EPSG:31287 " + hazard + "/hazard_zones.gpkg").c_str()), 0);
 
+  // issue 19, item 2: the region's layers are the envelope of each process's scenarios.
+  for (const char* name : {"energy_max", "reach_probability", "intensity"}) {
+    std::vector<float> largest = band(folder / "out/scenarios/blocks" / (std::string(name) + ".tif"));
+    const std::vector<float> big = band(folder / "out/scenarios/big" / (std::string(name) + ".tif"));
+    for (std::size_t cell = 0; cell < cells; ++cell) largest[cell] = std::max(largest[cell], big[cell]);
+    EXPECT_EQ(band(folder / "out/region/rockfall" / (std::string(name) + ".tif")), largest) << name;
+    EXPECT_NE(largest, big) << name;  // both scenarios shape the envelope
+  }
+  EXPECT_EQ(band(folder / "out/region/mudflow/arrival_time.tif"), band(folder / "out/scenarios/mud/arrival_time.tif"));
+
   std::ifstream record_file(folder / "out/study.json");
   const nlohmann::json record = nlohmann::json::parse(record_file);
+  EXPECT_EQ(record["region"]["rockfall"]["scenarios"], nlohmann::json({"blocks", "big"}));
+  EXPECT_EQ(record["region"]["mudflow"]["layers"].size(), 6u);
   const auto& high = record["hazard"]["maps"]["hazard"][0];
   EXPECT_EQ(high["name"], "high");
   EXPECT_EQ(high["cells"], std::count(both.begin(), both.end(), 4.0f));

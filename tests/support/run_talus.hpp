@@ -17,6 +17,12 @@ struct ProgramResult {
 // project and quicklooks take seconds per run, and tests/cli/run_project_test.cpp tests them.
 ProgramResult run_talus(const std::vector<std::string>& arguments, const std::filesystem::path& working_folder);
 
+// The same under `mpirun -np ranks` (OpenMPI, scripts/setup.sh; issue 19, item 6).
+ProgramResult run_talus_mpi(int ranks, const std::vector<std::string>& arguments, const std::filesystem::path& working_folder);
+
+// The lines of a run's stderr that are errors, `talus: error: ...` (progress lines are not).
+std::vector<std::string> error_lines(const std::string& err);
+
 // The exit code of ../shared/tools/check_layers.py on an output folder: `kind` is "rockfall" or
 // "mudflow", `dem` the run's DEM (0: every layer of the contract is there and right).
 int check_layers(const std::string& kind, const std::filesystem::path& out, const std::filesystem::path& dem);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "talus/core/byte_stream.hpp"
 #include "talus/hazard/zeroed_vector.hpp"
 
 namespace talus {
@@ -19,6 +20,9 @@ class CellCounts {
   void add(std::size_t cell, std::uint32_t n = 1) { counts_[cell] = saturating_sum(counts_[cell], n); }
   // Adds every cell of `other` (same cell count) into this one.
   void merge(const CellCounts& other);
+  // For MPI ranks (core/byte_stream.hpp): the non-zero cells; read() into an all-zero one.
+  void write(ByteWriter& out) const { out.put_sparse(counts_); }
+  void read(ByteReader& in) { in.get_sparse(counts_); }
 
   std::uint32_t operator[](std::size_t cell) const { return counts_[cell]; }
   std::size_t size() const { return counts_.size(); }

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 
+#include "talus/core/byte_stream.hpp"
 #include "talus/hazard/zeroed_vector.hpp"
 
 namespace talus {
@@ -21,6 +22,9 @@ class CellMaxima {
   }
   // Keeps the larger value of this and `other` (same cell count) in every cell.
   void merge(const CellMaxima& other);
+  // For MPI ranks (core/byte_stream.hpp): the reached cells; read() into an all-zero one.
+  void write(ByteWriter& out) const { out.put_sparse(maxima_); }
+  void read(ByteReader& in) { in.get_sparse(maxima_); }
 
   float operator[](std::size_t cell) const { return maxima_[cell]; }
   std::size_t size() const { return maxima_.size(); }

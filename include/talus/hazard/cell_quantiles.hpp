@@ -22,6 +22,10 @@ class CellQuantiles {
   void add(std::size_t cell, double value) { histogram(cell).add(value, binning_); }
   // Adds every cell's histogram of `other` (same cell count and binning) into this one.
   void merge(const CellQuantiles& other);
+  // For MPI ranks (core/byte_stream.hpp): the reached cells' histograms; read() into an empty
+  // one of the same size and binning.
+  void write(ByteWriter& out) const;
+  void read(ByteReader& in);
 
   // The q-quantile of the values added to the cell; 0 for a cell without values.
   double quantile(std::size_t cell, double q) const;

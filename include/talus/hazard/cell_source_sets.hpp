@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "talus/core/byte_stream.hpp"
 #include "talus/hazard/zeroed_vector.hpp"
 
 namespace talus {
@@ -35,6 +36,10 @@ class CellSourceSets {
   void add(std::size_t cell, std::uint32_t source);
   // Unites every cell's set of `other` (same cell count) with this one's.
   void merge(const CellSourceSets& other);
+  // For MPI ranks (core/byte_stream.hpp): the reached cells' sets; read() into an empty one of
+  // the same size.
+  void write(ByteWriter& out) const;
+  void read(ByteReader& in);
 
   // Number of distinct sources in the cell's set; 0 for a cell no source reached.
   std::uint64_t count(std::size_t cell) const;

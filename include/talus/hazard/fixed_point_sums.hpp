@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "talus/core/byte_stream.hpp"
 #include "talus/hazard/zeroed_vector.hpp"
 
 namespace talus {
@@ -21,6 +22,10 @@ class FixedPointSums {
   void add(std::size_t cell, double value);    // value rounded to the nearest quantum
   // Adds every cell of `other` (same cell count and quantum) into this one.
   void merge(const FixedPointSums& other);
+  // For MPI ranks (core/byte_stream.hpp): the non-zero cells and the saturation flag; read()
+  // into an all-zero one of the same quantum.
+  void write(ByteWriter& out) const;
+  void read(ByteReader& in);
 
   double total(std::size_t cell) const { return static_cast<double>(sums_[cell]) * quantum_; }
   std::int64_t quanta(std::size_t cell) const { return sums_[cell]; }

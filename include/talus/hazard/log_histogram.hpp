@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "talus/core/byte_stream.hpp"
 #include "talus/hazard/log_binning.hpp"
 
 namespace talus {
@@ -20,6 +21,9 @@ class LogHistogram {
   // Every call on one histogram must pass the same binning.
   void add(double value, const LogBinning& binning);
   void merge(const LogHistogram& other);
+  // For MPI ranks (core/byte_stream.hpp); read() into an empty one.
+  void write(ByteWriter& out) const;
+  void read(ByteReader& in);
   std::uint64_t count() const;
   // q in [0, 1]; 0 for an empty histogram, 0 for ranks among underflow values, binning.max()
   // for ranks among overflow values.

@@ -86,6 +86,10 @@ class EnvelopeGrid {
  public:
   explicit EnvelopeGrid(std::size_t cell_count);
   void add(const EnvelopeField& field);
+  // The sums of another grid's sources (MPI ranks, issue 19), exact in any order.
+  void merge(const EnvelopeGrid& other);
+  void write(ByteWriter& out) const;
+  void read(ByteReader& in);
   EnvelopeField field() const;
 
  private:

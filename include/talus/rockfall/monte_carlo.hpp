@@ -37,6 +37,16 @@ struct StochasticParameters {
                                         //     a smaller rock of size D sees them scaled by D / this
 };
 
+// The share of a run's sources that one process simulates, for MPI (issue 19, item 6): of the
+// sources selected, in their order, blocks of `block` consecutive ones are dealt to the ranks in
+// turn, so that neighbouring sources (of similar cost) spread over the ranks.
+struct SourceShare {
+  std::uint32_t rank = 0;
+  std::uint32_t ranks = 1;
+  static constexpr std::size_t block = 16;
+  bool owns(std::size_t position) const { return (position / block) % ranks == rank; }
+};
+
 struct RockfallSettings {
   Rock rock;                            // the nominal rock
   StochasticParameters stochastic;
@@ -51,6 +61,7 @@ struct RockfallSettings {
   // With auto_runs, only_source runs that source's batches as the whole run does; only_run
   // simulates that one run of each source, without batches or a convergence test.
   std::optional<std::uint64_t> only_source, only_run;
+  SourceShare share;                    // the whole run unless split among MPI ranks
 };
 
 // A trajectory that failed numerically (NumericalFailure), with the source and run (0-based)
@@ -78,6 +89,17 @@ struct ConvergenceReport {
   std::uint64_t runs_suggested = 0;
 };
 
+// The parts of a ConvergenceReport that add up over shares of the sources (SourceShare): the
+// whole run's per-run maps before and after each source's last doubling, and source counts.
+struct ConvergenceSums {
+  explicit ConvergenceSums(std::size_t cells) : half(cells), all(cells) {}
+  EnvelopeGrid half, all;
+  std::uint64_t sources = 0, sources_converged = 0, sources_at_limit = 0;
+};
+
+// The report of the sums of a run with these settings.
+ConvergenceReport convergence_report(const ConvergenceSums& sums, const RockfallSettings& settings);
+
 // A rock that breaks (paper fig. 4, full mode) reports several fragments (trajectory_observer.hpp):
 // its line and runout follow its first fragment only; stop_counts count every fragment's stop.
 struct RockfallResult {
@@ -90,6 +112,7 @@ struct RockfallResult {
   std::uint64_t fragments = 0;                  // extra rocks born from fractures, over all runs
   std::vector<std::uint64_t> runs_by_source;    // runs simulated per source (0: not selected)
   std::optional<ConvergenceReport> convergence; // none with only_run (one run per source)
+  std::optional<ConvergenceSums> convergence_sums;  // what `convergence` is computed from
 };
 
 // One release location: a cell centre (jittered inside its cell) or a point, with the
@@ -103,7 +126,7 @@ struct ReleaseSource {
 };
 std::vector<ReleaseSource> release_sources(const ReleaseSet& release);
 
-// Every run of every source (or those only_source and only_run select): in batches per source,
+// Every run of every source (or those only_source and only_run select, of settings.share): in batches per source,
 // each batch's runs shared among the threads, the next batch of a source decided (auto_runs)
 // from that source's envelope once its batch is done. A run that fails
 // numerically ends them all: the earliest failing run in (source, run) order is thrown as a

@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "talus/core/byte_stream.hpp"
 #include "talus/core/grid.hpp"
 #include "talus/rockfall/envelope_convergence.hpp"
 #include "talus/rockfall/trajectory_observer.hpp"
@@ -40,6 +41,9 @@ class RockfallStatistics {
 
   // Adds every statistic of `other` (same grid) into this one.
   void merge(const RockfallStatistics& other);
+  // For MPI ranks (core/byte_stream.hpp): every accumulator; read() into a new one of the same DEM.
+  void write(ByteWriter& out) const;
+  void read(ByteReader& in);
   std::uint64_t rocks() const;          // trajectories recorded
   RockfallLayers layers() const;
 

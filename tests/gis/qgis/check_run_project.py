@@ -5,8 +5,9 @@ usage: check_run_project.py OUT_DIR PROCESS LAYER [LAYER ...]
 
 The project reads; every layer in it is valid; it holds each LAYER (a file stem) under its .qmd
 title, the hillshade and the release, in the process's group; the hillshade lies at the bottom;
-for PROCESS study (`talus study`), the group is Hazard, there is no release, and each scenario of
-OUT_DIR/study.json has a group named after it;
+for PROCESS study (`talus study`), the group is Hazard, there is no release, each scenario of
+OUT_DIR/study.json has a group named after it, and each process of its "region" a group of its
+region layers, every one of them styled;
 quicklook/LAYER.png exists for each LAYER given and is not blank (it holds the layer's colours
 and the hillshade's greys, not one flat colour). Prints one line per problem; exit 0 when none.
 """
@@ -76,11 +77,23 @@ def main():
         problems += quicklook_problems(os.path.join(out, "quicklook", name + ".png"))
     if process == "study":
         with open(os.path.join(out, "study.json"), encoding="utf-8") as file:
-            scenarios = [s["name"] for s in json.load(file)["scenarios"]]
+            study = json.load(file)
+        scenarios = [s["name"] for s in study["scenarios"]]
         groups = [g.name() for g in project.layerTreeRoot().children() if g.nodeType() == 0]
         for name in scenarios:
             if not any(g.startswith(name + " (") for g in groups):
                 problems.append(f"no group for the scenario {name} (groups: {groups})")
+        # The region's layers (region/PROCESS/), each styled: its .qml gives it a renderer of its own.
+        for merged, entry in study.get("region", {}).items():
+            if not any(g.startswith("Region: ") and merged[:4] in g.replace(" ", "").lower() for g in groups):
+                problems.append(f"no region group for {merged} (groups: {groups})")
+            for name in entry["layers"]:
+                path = os.path.join(out, entry["folder"], name + ".tif")
+                found = [layer for layer in layers if os.path.abspath(layer.source()) == os.path.abspath(path)]
+                if not found:
+                    problems.append(f"{path}: not in the project")
+                elif found[0].renderer() is None or found[0].renderer().type() == "singlebandgray":
+                    problems.append(f"{path}: not styled (renderer {found[0].renderer() and found[0].renderer().type()})")
     for needed in ("hillshade",) if process == "study" else ("hillshade", "Release"):
         if not any(needed.lower() in (layer.name() + layer.source()).lower() for layer in layers):
             problems.append(f"no {needed} layer in the project")

@@ -1,0 +1,161 @@
+// `mpirun -np N talus rockfall|study` (issue 19, item 6; docs/study.md, "More than one
+// machine"): the ranks share the rock-fall sources and rank 0 joins their statistics exactly, so
+// every layer is bit-identical to one process's for any N; errors are one line, the same exit
+// code as one process, and nothing written.
+#include <gtest/gtest.h>
+
+#include <ogrsf_frmts.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "run_talus.hpp"
+#include "test_paths.hpp"
+
+namespace talus {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// Every .tif under `a` has a byte-identical twin under `b`; returns how many were compared.
+int expect_same_rasters(const fs::path& a, const fs::path& b) {
+  int compared = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(a)) {
+    if (entry.path().extension() != ".tif") continue;
+    const fs::path twin = b / fs::relative(entry.path(), a);
+    EXPECT_TRUE(fs::exists(twin)) << twin;
+    EXPECT_TRUE(file_bytes(entry.path()) == file_bytes(twin)) << entry.path() << " differs from " << twin;
+    ++compared;
+  }
+  return compared;
+}
+
+// Every trajectory of a run's trajectories.gpkg: its ids and its line as WKT.
+std::vector<std::string> trajectory_lines(const fs::path& out) {
+  GDALAllRegister();
+  GDALDatasetUniquePtr data(GDALDataset::Open((out / "trajectories.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  std::vector<std::string> lines;
+  if (!data) return lines;
+  for (auto& feature : *data->GetLayerByName("trajectories")) {
+    char* wkt = nullptr;
+    feature->GetGeometryRef()->exportToWkt(&wkt);
+    lines.push_back(std::to_string(feature->GetFieldAsInteger64("source_id")) + "/" +
+                    std::to_string(feature->GetFieldAsInteger64("run_id")) + " " + wkt);
+    CPLFree(wkt);
+  }
+  return lines;
+}
+
+std::vector<std::string> sample_rockfall(const std::string& out, const std::string& threads) {
+  const fs::path sample = test::source_dir() / "sample_dem";
+  return {"rockfall", "--dem", (sample / "dem.tif").string(), "--lithology", (sample / "lithology.tif").string(),
+          "--vegetation", (sample / "vegetation.tif").string(), "--release", (sample / "rockfall_release.gpkg").string(),
+          "--runs", "6", "--seed", "3", "--out", out, "--threads", threads};
+}
+
+TEST(Mpi, RockfallLayersAndLinesEqualOneProcessBitForBitForAnyRankCount) {
+  const fs::path folder = test::fresh_folder("mpi_rockfall");
+  const test::ProgramResult one = test::run_talus(sample_rockfall("one", "2"), folder);
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  for (const int ranks : {2, 3}) {
+    const std::string out = "ranks" + std::to_string(ranks);
+    const test::ProgramResult split = test::run_talus_mpi(ranks, sample_rockfall(out, "1"), folder);
+    ASSERT_EQ(split.exit_code, 0) << split.out << split.err;
+    EXPECT_NE(split.out.find(std::to_string(ranks) + " MPI ranks x 1 threads"), std::string::npos) << split.out;
+    // Rank 0 alone prints: the layers' line once.
+    EXPECT_EQ(split.out.find("Layers written"), split.out.rfind("Layers written")) << split.out;
+    EXPECT_EQ(expect_same_rasters(folder / "one", folder / out), 11);
+    const std::vector<std::string> lines = trajectory_lines(folder / out);
+    EXPECT_GT(lines.size(), 100u);
+    EXPECT_EQ(lines, trajectory_lines(folder / "one"));
+  }
+  fs::remove_all(folder);
+}
+
+TEST(Mpi, StudyScenariosAndHazardMapEqualOneProcessBitForBit) {
+  const fs::path folder = test::fresh_folder("mpi_study");
+  const fs::path sample = test::source_dir() / "sample_dem";
+  std::ofstream(folder / "study.toml")
+      << "[inputs]\ndem = \"" << (sample / "dem.tif").string() << "\"\nlithology = \""
+      << (sample / "lithology.tif").string() << "\"\n"
+      << "[[rockfall]]\nname = \"blocks\"\nrelease = \"auto\"\nreturn_period = 30\n[rockfall.run]\nruns = 2\n"
+      << "[[rockfall]]\nname = \"big-blocks\"\nrelease = \"" << (sample / "rockfall_release.gpkg").string()
+      << "\"\nreturn_period = 300\n[rockfall.run]\nruns = 4\n[rockfall.rock]\nsize = \"2\"\n"
+      << "[[mudflow]]\nname = \"mud\"\nrelease = \"" << (sample / "mudflow_release.gpkg").string()
+      << "\"\nreturn_period = 100\n[mudflow.mud]\nparticle_size = 5\n";
+  const test::ProgramResult one = test::run_talus({"study", "study.toml", "--out", "one", "--threads", "2"}, folder);
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const test::ProgramResult split = test::run_talus_mpi(2, {"study", "study.toml", "--out", "two", "--threads", "1"}, folder);
+  ASSERT_EQ(split.exit_code, 0) << split.out << split.err;
+  EXPECT_EQ(split.out.find("Study written"), split.out.rfind("Study written")) << split.out;
+  // Three scenarios' layers, the detected sources and the three hazard maps.
+  EXPECT_GE(expect_same_rasters(folder / "one", folder / "two"), 3 * 10 + 1 + 3);
+  EXPECT_TRUE(fs::exists(folder / "two" / "study.json"));
+  EXPECT_TRUE(fs::exists(folder / "two" / "hazard" / "hazard_zones.gpkg"));
+
+  // A second run under mpirun resumes: every scenario already done, nothing simulated.
+  const test::ProgramResult again = test::run_talus_mpi(2, {"study", "study.toml", "--out", "two", "--threads", "1"}, folder);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(again.out.find("Simulating"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("already done"), std::string::npos) << again.out;
+  EXPECT_GE(expect_same_rasters(folder / "one", folder / "two"), 3 * 10 + 1 + 3);
+  fs::remove_all(folder);
+}
+
+TEST(Mpi, ABadInputIsOneLineWithExitCodeTwoAndNothingWritten) {
+  const fs::path folder = test::fresh_folder("mpi_bad_input");
+  std::vector<std::string> arguments = sample_rockfall("out", "1");
+  arguments[2] = "missing.tif";
+  const test::ProgramResult result = test::run_talus_mpi(2, arguments, folder);
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  const std::vector<std::string> errors = test::error_lines(result.err);
+  ASSERT_EQ(errors.size(), 1u) << result.err;
+  EXPECT_NE(errors.front().find("missing.tif (DEM): file not found"), std::string::npos) << errors.front();
+  EXPECT_FALSE(fs::exists(folder / "out"));
+  fs::remove_all(folder);
+}
+
+TEST(Mpi, AFailingTrajectoryStopsEveryRankWithTheErrorOfOneProcess) {
+  const fs::path folder = test::fresh_folder("mpi_failure");
+  const fs::path c = test::source_dir() / "validation" / "tschamut2014";
+  std::ofstream(folder / "failing.toml") << "[full]\nguard_tolerance = 1e-300\nmax_retries = 0\n";
+  const auto arguments = [&](const std::string& threads) {
+    return std::vector<std::string>{"rockfall", "--dem", (c / "terrain.asc").string(), "--crs", "local", "--release",
+                                    (c / "calibration_runs.vrt").string(), "--materials", (c / "materials.toml").string(),
+                                    "--mode", "full", "--runs", "3", "--out", "out", "--scenario", "failing.toml",
+                                    "--threads", threads};
+  };
+  const test::ProgramResult one = test::run_talus(arguments("1"), folder);
+  const test::ProgramResult split = test::run_talus_mpi(2, arguments("1"), folder);
+  EXPECT_EQ(one.exit_code, 3) << one.err;
+  EXPECT_EQ(split.exit_code, 3) << split.err;
+  const std::vector<std::string> errors = test::error_lines(split.err);
+  ASSERT_EQ(errors.size(), 1u) << split.err;
+  EXPECT_EQ(errors, test::error_lines(one.err));
+  EXPECT_FALSE(fs::exists(folder / "out"));
+  fs::remove_all(folder);
+}
+
+TEST(Mpi, CommandsThatDoNotSplitRefuseSeveralRanks) {
+  const fs::path folder = test::fresh_folder("mpi_refused");
+  const fs::path sample = test::source_dir() / "sample_dem";
+  const test::ProgramResult result = test::run_talus_mpi(
+      2, {"mudflow", "--dem", (sample / "dem.tif").string(), "--release", (sample / "mudflow_release.gpkg").string(), "--out", "out"},
+      folder);
+  EXPECT_EQ(result.exit_code, 2);
+  const std::vector<std::string> errors = test::error_lines(result.err);
+  ASSERT_EQ(errors.size(), 1u) << result.err;
+  EXPECT_NE(errors.front().find("talus mudflow runs in one process"), std::string::npos) << errors.front();
+  EXPECT_FALSE(fs::exists(folder / "out"));
+  fs::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace talus
