@@ -116,9 +116,4 @@ void together(const ProcessRanks& ranks, const std::function<void()>& step) {
   if (agreed.kind != Outcome::done) throw_failure(agreed);
 }
 
-bool rank0_decides(const ProcessRanks& ranks, bool decision) {
-  if (ranks.size() == 1) return decision;
-  return ranks.broadcast({static_cast<std::uint8_t>(decision ? 1 : 0)}).at(0) != 0;
-}
-
 }  // namespace talus::cli

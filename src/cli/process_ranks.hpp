@@ -44,7 +44,4 @@ class OrderedFailure : public NumericalFailure {
 // InputError, NumericalFailure, Cancelled or std::runtime_error.
 void together(const ProcessRanks& ranks, const std::function<void()>& step);
 
-// Rank 0's decision, on every rank.
-bool rank0_decides(const ProcessRanks& ranks, bool decision);
-
 }  // namespace talus::cli

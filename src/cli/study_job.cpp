@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <fstream>
+#include <functional>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +20,7 @@
 #include "study_report.hpp"
 #include "study_sources.hpp"
 #include "study_units.hpp"
+#include "talus/core/byte_stream.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/scene.hpp"
 
@@ -126,7 +130,7 @@ CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const
                       checksums)};
 }
 
-// A rock fall's sources are shared among the ranks; a mud flow runs on rank 0 while the others wait.
+// A rock fall's sources are shared among the ranks (rockfall_job.hpp); a mud flow runs on one rank.
 void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices, const JobOutput& output,
                   const ProcessRanks& ranks) {
   if (s.process == StudyProcess::rockfall) {
@@ -135,13 +139,63 @@ void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices
     rockfall_job(run.options, run.table, output, ranks);
     return;
   }
-  together(ranks, [&] {
-    if (!ranks.root()) return;
-    MudflowScenarioRun run;
-    set_up(run, study, s, choices);
-    run.options.inputs.erodible = s.erodible;
-    mudflow_job(run.options, run.table, false, output);
-  });
+  MudflowScenarioRun run;
+  set_up(run, study, s, choices);
+  run.options.inputs.erodible = s.erodible;
+  mudflow_job(run.options, run.table, false, output);
+}
+
+// Under MPI, the mud flows go to the ranks in turn (the k-th to rank k mod N) and run side by
+// side, each on one rank, while the rock falls are shared source by source. A mud flow that
+// failed on its rank is thrown on every rank at the next meeting: the next rock fall, or the end
+// of the scenarios. In one process it is thrown at once, as it happens.
+class MudflowTurns {
+ public:
+  explicit MudflowTurns(const ProcessRanks& ranks) : ranks_(ranks) {}
+  int next_rank() { return static_cast<int>(count_++ % static_cast<std::size_t>(ranks_.size())); }
+  void run_own(const std::function<void()>& step) {
+    if (ranks_.size() == 1) return step();
+    if (failed_) return;  // this rank only waits for the meeting now
+    try {
+      step();
+    } catch (...) {
+      failed_ = std::current_exception();
+    }
+  }
+  void meet() {
+    together(ranks_, [&] {
+      if (failed_) std::rethrow_exception(std::exchange(failed_, nullptr));
+    });
+  }
+
+ private:
+  const ProcessRanks& ranks_;
+  std::size_t count_ = 0;
+  std::exception_ptr failed_;
+};
+
+// Which scenarios an earlier run finished, as rank 0 reads them, on every rank.
+std::vector<std::uint8_t> scenarios_done(const Study& study, const StudyChoices& choices,
+                                         const std::vector<nlohmann::ordered_json>& units, const ProcessRanks& ranks) {
+  std::vector<std::uint8_t> done(study.scenarios.size(), 0);
+  if (ranks.root()) {
+    for (std::size_t k = 0; k < done.size(); ++k) done[k] = unit_done(choices.out, study.scenarios[k], units[k]) ? 1 : 0;
+  }
+  return ranks.broadcast(done);
+}
+
+// Each scenario's wall time on the rank that ran it (the longest over the ranks), on rank 0.
+std::vector<double> scenario_seconds(const std::vector<double>& mine, const ProcessRanks& ranks) {
+  ByteWriter out;
+  out.put_vector(mine);
+  std::vector<double> longest = mine;
+  for (const auto& bytes : ranks.gather(out.bytes())) {
+    ByteReader in(bytes);
+    std::vector<double> theirs;
+    in.get_vector(theirs);
+    for (std::size_t k = 0; k < longest.size() && k < theirs.size(); ++k) longest[k] = std::max(longest[k], theirs[k]);
+  }
+  return longest;
 }
 
 nlohmann::json read_json(const std::filesystem::path& path) {
@@ -253,22 +307,34 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
   const StudyZoning& zoning = *checked.zoning;
   const nlohmann::ordered_json& sources = checked.sources;
   StudyProgress progress(output.progress, study.scenarios.size());
-  std::vector<double> seconds;
+  const std::vector<std::uint8_t> done = scenarios_done(study, choices, units, ranks);
+  MudflowTurns mudflows(ranks);
+  std::vector<double> seconds(study.scenarios.size(), 0.0);
   for (std::size_t k = 0; k < study.scenarios.size(); ++k) {
     const StudyScenario& s = study.scenarios[k];
     progress.begin(k, s.name);
     output.say("Scenario " + std::to_string(k + 1) + " of " + std::to_string(study.scenarios.size()) + ": " + s.name +
                " (" + to_string(s.process) + ", return period " + printf_text("%g", s.return_period_years) + " years)");
     const auto start = Clock::now();
-    if (rank0_decides(ranks, ranks.root() && unit_done(choices.out, s, units[k]))) {
+    const JobOutput indented{[&](const std::string& line) { output.say("  " + line); }, progress};
+    if (done[k] != 0) {
       output.say("  already done: its layers were computed from the same parameters and inputs (resumed)");
-    } else {
-      run_scenario(study, s, choices, JobOutput{[&](const std::string& line) { output.say("  " + line); }, progress},
-                   ranks);
+    } else if (s.process == StudyProcess::rockfall) {
+      mudflows.meet();
+      run_scenario(study, s, choices, indented, ranks);
       if (ranks.root()) mark_unit_done(choices.out, s, units[k]);
+    } else if (const int owner = mudflows.next_rank(); owner == ranks.rank()) {
+      mudflows.run_own([&] {
+        run_scenario(study, s, choices, indented, ranks);
+        mark_unit_done(choices.out, s, units[k]);
+      });
+    } else {
+      output.say("  runs on MPI rank " + std::to_string(owner) + ", beside this one; its lines are in its run.json");
     }
-    seconds.push_back(seconds_since(start));
+    seconds[k] = seconds_since(start);
   }
+  mudflows.meet();
+  seconds = scenario_seconds(seconds, ranks);
   if (!ranks.root()) return;  // rank 0 writes the study's own files
   nlohmann::ordered_json hazard;
   if (zoning.matrix) {

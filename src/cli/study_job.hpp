@@ -26,8 +26,9 @@ struct StudyChoices {
 // OUT/scenarios/NAME, writes the hazard map, OUT/study.json, the QGIS project (when wanted) and
 // OUT/report.md. A scenario that fails stops the study; the
 // scenarios finished before it stay committed.
-// Among MPI ranks, the ranks share every rock-fall scenario's sources (rockfall_job.hpp), rank 0
-// alone runs the mud flows and writes; OUT must be on a file system every rank sees.
+// Among MPI ranks, the ranks share every rock-fall scenario's sources (rockfall_job.hpp), the mud
+// flows go to the ranks in turn, and rank 0 writes the study's own files; OUT must be on a file
+// system every rank sees.
 void study_job(const Study& study, const StudyChoices& choices, const JobOutput& output,
                const ProcessRanks& ranks = single_process());
 

@@ -89,14 +89,18 @@ TEST(Mpi, StudyScenariosAndHazardMapEqualOneProcessBitForBit) {
       << "[[rockfall]]\nname = \"big-blocks\"\nrelease = \"" << (sample / "rockfall_release.gpkg").string()
       << "\"\nreturn_period = 300\n[rockfall.run]\nruns = 4\n[rockfall.rock]\nsize = \"2\"\n"
       << "[[mudflow]]\nname = \"mud\"\nrelease = \"" << (sample / "mudflow_release.gpkg").string()
-      << "\"\nreturn_period = 100\n[mudflow.mud]\nparticle_size = 5\n";
+      << "\"\nreturn_period = 100\n[mudflow.mud]\nparticle_size = 5\n"
+      << "[[mudflow]]\nname = \"deep-mud\"\nrelease = \"" << (sample / "mudflow_release.gpkg").string()
+      << "\"\nreturn_period = 300\n[mudflow.mud]\nparticle_size = 5\nrelease_depth = 3.0\n";
   const test::ProgramResult one = test::run_talus({"study", "study.toml", "--out", "one", "--threads", "2"}, folder);
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const test::ProgramResult split = test::run_talus_mpi(2, {"study", "study.toml", "--out", "two", "--threads", "1"}, folder);
   ASSERT_EQ(split.exit_code, 0) << split.out << split.err;
   EXPECT_EQ(split.out.find("Study written"), split.out.rfind("Study written")) << split.out;
-  // Three scenarios' layers, the detected sources and the three hazard maps.
-  EXPECT_GE(expect_same_rasters(folder / "one", folder / "two"), 3 * 10 + 1 + 3);
+  // The second mud flow runs on rank 1, beside the first on rank 0.
+  EXPECT_NE(split.out.find("runs on MPI rank 1"), std::string::npos) << split.out;
+  // Four scenarios' layers, the detected sources, the three hazard maps and the region layers.
+  EXPECT_GE(expect_same_rasters(folder / "one", folder / "two"), 2 * 11 + 2 * 6 + 1 + 3 + 12);
   EXPECT_TRUE(fs::exists(folder / "two" / "study.json"));
   EXPECT_TRUE(fs::exists(folder / "two" / "hazard" / "hazard_zones.gpkg"));
 
@@ -104,8 +108,10 @@ TEST(Mpi, StudyScenariosAndHazardMapEqualOneProcessBitForBit) {
   const test::ProgramResult again = test::run_talus_mpi(2, {"study", "study.toml", "--out", "two", "--threads", "1"}, folder);
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(again.out.find("Simulating"), std::string::npos) << again.out;
-  EXPECT_NE(again.out.find("already done"), std::string::npos) << again.out;
-  EXPECT_GE(expect_same_rasters(folder / "one", folder / "two"), 3 * 10 + 1 + 3);
+  std::size_t resumed = 0;
+  for (auto at = again.out.find("already done"); at != std::string::npos; at = again.out.find("already done", at + 1)) ++resumed;
+  EXPECT_EQ(resumed, 4u) << again.out;  // rank 0 decides for every rank, the mud flow of rank 1 too
+  EXPECT_GE(expect_same_rasters(folder / "one", folder / "two"), 2 * 11 + 2 * 6 + 1 + 3 + 12);
   fs::remove_all(folder);
 }
 
