@@ -140,7 +140,10 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   together(ranks, [&] {
     RunChoices choices = resolve_rockfall_parameters(o, table);
     // The output folder is checked and staged before any work (issue 18, item 3), by rank 0.
-    if (ranks.root()) staged.emplace(o.out, std::map<std::string, std::string>{{"TALUS_PROCESS", "rock fall"}, {"TALUS_SCENARIO", scenario_text(o)}});
+    if (ranks.root()) {
+      staged.emplace(o.out, std::map<std::string, std::string>{{"TALUS_PROCESS", "rock fall"},
+                                                               {"TALUS_SCENARIO", scenario_text(o)}});
+    }
     read = read_rockfall_scene(o, std::move(choices));
   });
   const auto& [intensity, project] = read->choices;
