@@ -69,7 +69,7 @@ void write_zones(const std::filesystem::path& path, const Grid<float>& hazard, c
   // The degrees as integers, and a mask of the cells with a degree.
   GDALDatasetUniquePtr cells(memory->Create("", spec.width, spec.height, 2, GDT_Int32, nullptr));
   if (!cells) write_failure(path, "making the degree raster");
-  std::array<double, 6> geotransform = spec.geotransform;
+  std::array<double, 6> geotransform = spec.own_geotransform();
   cells->SetGeoTransform(geotransform.data());
   std::vector<std::int32_t> degree(hazard.size()), mask(hazard.size());
   for (std::size_t cell = 0; cell < hazard.size(); ++cell) {

@@ -98,7 +98,7 @@ GDALDatasetUniquePtr in_memory(const Grid<float>& values, const LayerDescription
   const GridSpec& spec = values.spec();
   GDALDatasetUniquePtr dataset(driver("MEM").Create("", spec.width, spec.height, 1, GDT_Float32, nullptr));
   if (!dataset) gdal_failure(final_path, "creating the in-memory dataset");
-  std::array<double, 6> geotransform = spec.geotransform;
+  std::array<double, 6> geotransform = spec.own_geotransform();
   check(dataset->SetGeoTransform(geotransform.data()), final_path, "setting the geotransform");
   if (!spec.crs_wkt.empty())
     check(dataset->SetProjection(spec.crs_wkt.c_str()), final_path, "setting the CRS from its WKT");

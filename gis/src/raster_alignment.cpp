@@ -5,6 +5,7 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "talus/core/errors.hpp"
@@ -20,7 +21,7 @@ struct Bounds {
 };
 
 Bounds bounds_of(const GridSpec& spec) {
-  const auto& gt = spec.geotransform;
+  const auto gt = spec.own_geotransform();
   return {gt[0], gt[3] + spec.height * gt[5], gt[0] + spec.width * gt[1], gt[3]};
 }
 
@@ -40,9 +41,8 @@ Bounds bounds_in_target(const GridSpec& source, const OGRSpatialReference& sourc
 GDALDatasetUniquePtr empty_target(const GridSpec& target, const OGRSpatialReference& target_srs) {
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
   GDALDatasetUniquePtr dataset(mem->Create("", target.width, target.height, 1, GDT_Float64, nullptr));
-  double gt[6];
-  std::copy(target.geotransform.begin(), target.geotransform.end(), gt);
-  dataset->SetGeoTransform(gt);
+  std::array<double, 6> gt = target.own_geotransform();
+  dataset->SetGeoTransform(gt.data());
   if (!target_srs.IsEmpty()) dataset->SetSpatialRef(&target_srs);
   GDALRasterBand* band = dataset->GetRasterBand(1);
   band->SetNoDataValue(input_nodata);
@@ -68,12 +68,16 @@ void warp_into(GDALDataset& source, GDALDataset& destination, const std::string&
   if (result == nullptr) throw InputError(name + ": alignment onto the DEM grid failed: " + last_gdal_error("GDAL warp error"));
 }
 
-std::vector<double> read_band(GDALDataset& dataset, const std::string& name) {
+// The band's values over cells [col, col + w) x [row, row + h) (the whole band by default),
+// nodata and non-finite values as input_nodata.
+std::vector<double> read_band(GDALDataset& dataset, const std::string& name, int col = 0, int row = 0, int w = 0,
+                              int h = 0) {
   GDALRasterBand* band = dataset.GetRasterBand(1);
-  const int w = dataset.GetRasterXSize(), h = dataset.GetRasterYSize();
+  if (w == 0) w = dataset.GetRasterXSize();
+  if (h == 0) h = dataset.GetRasterYSize();
   std::vector<double> values(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   CPLErrorReset();
-  if (band->RasterIO(GF_Read, 0, 0, w, h, values.data(), w, h, GDT_Float64, 0, 0) != CE_None) {
+  if (band->RasterIO(GF_Read, col, row, w, h, values.data(), w, h, GDT_Float64, 0, 0) != CE_None) {
     throw InputError(name + ": cannot read its values: " + last_gdal_error("read error"));
   }
   int has_nodata = 0;
@@ -132,6 +136,13 @@ AlignedRaster align_raster(const std::filesystem::path& path, const std::string&
   if (same_crs && source.same_grid(target)) {
     result.method = "same grid";
     result.values = Grid<double>(aligned, read_band(*dataset, name));
+    return result;
+  }
+  if (same_crs && target.is_window() && source.same_grid(target.whole())) {
+    // A tile's window of a raster on the DEM's grid: its own cells, read as they are.
+    result.method = "same grid";
+    result.values = Grid<double>(aligned, read_band(*dataset, name, target.col_offset, target.row_offset,
+                                                    target.width, target.height));
     return result;
   }
   if (kind == ValueKind::continuous) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "talus/core/errors.hpp"
 #include "talus/gis/gdal_dataset.hpp"
@@ -224,21 +225,28 @@ GroundModel Scene::ground_model() const {
   return GroundModel(dem.elevation, std::move(nodes));
 }
 
-Scene load_scene(const SceneInputs& inputs) {
-  const CrsOption crs = parse_crs_option(inputs.crs);
+namespace {
+
+// The DEM and the materials table: what the region of a tiled run holds whole.
+Scene load_dem_and_materials(const SceneInputs& inputs, const CrsOption& crs) {
   Scene scene;
   scene.inputs = inputs;
   scene.dem = read_dem(inputs.dem, crs);
   scene.notes.insert(scene.notes.end(), scene.dem.notes.begin(), scene.dem.notes.end());
   scene.materials = inputs.materials.empty() ? builtin_materials() : read_materials(inputs.materials);
   const Grid<double>& dem = scene.dem.elevation;
-
   std::size_t holes = 0;
   for (std::size_t i = 0; i < dem.size(); ++i) holes += dem.is_valid(i) ? 0 : 1;
   if (holes > 0) {
     scene.notes.push_back(std::to_string(holes) + " DEM cells are nodata: rocks and flows stop there, layers are nodata there");
   }
+  return scene;
+}
 
+// Lithology and vegetation aligned onto the scene's DEM grid (a window of it, for a tile).
+void load_ground_maps(Scene& scene, const CrsOption& crs) {
+  const SceneInputs& inputs = scene.inputs;
+  const Grid<double>& dem = scene.dem.elevation;
   if (inputs.lithology.empty()) {
     const LithologyClass* fallback = scene.materials.find_lithology(scene.materials.default_lithology);
     scene.lithology = Grid<int>(dem.spec(), fallback->code);
@@ -251,12 +259,55 @@ Scene load_scene(const SceneInputs& inputs) {
     scene.notes.push_back("lithology: aligned by " + raster.method);
   }
   load_vegetation(scene, crs);
-  if (!inputs.release.empty()) {
-    scene.release = read_release(inputs.release, dem, crs, inputs.run_rock, inputs.release_depth);
-    if (inputs.release_needs_depth) require_release_depths(inputs.release, inputs.release_depth, *scene.release);
-  }
-  if (!inputs.erodible.empty()) scene.erodible = load_erodible(scene, crs);
+}
+
+void load_release(Scene& scene, const CrsOption& crs) {
+  const SceneInputs& inputs = scene.inputs;
+  if (inputs.release.empty()) return;
+  scene.release = read_release(inputs.release, scene.dem.elevation, crs, inputs.run_rock, inputs.release_depth);
+  if (inputs.release_needs_depth) require_release_depths(inputs.release, inputs.release_depth, *scene.release);
+}
+
+}  // namespace
+
+Scene load_scene(const SceneInputs& inputs) {
+  Scene scene = load_region(inputs);
+  add_ground_maps(scene);
   return scene;
+}
+
+Scene load_region(const SceneInputs& inputs) {
+  const CrsOption crs = parse_crs_option(inputs.crs);
+  Scene scene = load_dem_and_materials(inputs, crs);
+  load_release(scene, crs);
+  return scene;
+}
+
+void add_ground_maps(Scene& scene) {
+  const CrsOption crs = parse_crs_option(scene.inputs.crs);
+  load_ground_maps(scene, crs);
+  if (!scene.inputs.erodible.empty()) scene.erodible = load_erodible(scene, crs);
+}
+
+Scene load_tile(const Scene& region, const GridSpec& window) {
+  const Grid<double>& whole = region.dem.elevation;
+  if (!window.is_window() || !window.whole().same_grid(whole.spec())) {
+    throw std::invalid_argument("load_tile: not a window of the region's DEM");
+  }
+  Scene tile;
+  tile.inputs = region.inputs;
+  tile.inputs.release.clear();
+  tile.materials = region.materials;
+  tile.dem.crs_name = region.dem.crs_name;
+  std::vector<double> elevations;
+  elevations.reserve(window.cell_count());
+  for (int row = 0; row < window.height; ++row) {
+    const auto first = whole.values().begin() + static_cast<std::ptrdiff_t>(whole.index(window.col_offset, window.row_offset + row));
+    elevations.insert(elevations.end(), first, first + window.width);
+  }
+  tile.dem.elevation = Grid<double>(window, std::move(elevations));
+  add_ground_maps(tile);
+  return tile;
 }
 
 }  // namespace talus::gis

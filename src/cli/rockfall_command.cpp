@@ -42,14 +42,21 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
       ->check(whole_number());
   cmd->add_option("--only-run", o->settings.only_run, "Simulate only this run of each source (0-based, as run_id)")
       ->check(whole_number());
+  auto* memory = cmd->add_option("--memory", o->tiles.memory,
+                                 "GB the run may use; a larger region runs in tiles (default: half of this machine's memory)");
+  auto* halo = cmd->add_option("--halo", o->tiles.halo, "m a tile's rocks may run beyond it (default 1000)");
+  auto* tile_size = cmd->add_option("--tile-size", o->tiles.size, "Cells on a side of a tile (default: from --memory)");
   auto* project = cmd->add_option("--project", o->project,
                                   "on (default): also write project.qgz, hillshade.tif and quicklook/*.png with QGIS; off");
-  cmd->callback([o, table, &action, &ranks, mode, runs, shape, size, density, seed, threads, intensity, project] {
+  cmd->callback([o, table, &action, &ranks, mode, runs, shape, size, density, seed, threads, intensity, project, memory,
+                 halo, tile_size] {
     const std::pair<CLI::Option*, const char*> flags[] = {{mode, "run.mode"},    {runs, "run.runs"},
                                                           {seed, "run.seed"},    {threads, "run.threads"},
                                                           {shape, "rock.shape"},
                                                           {size, "rock.size"},   {density, "rock.density"},
-                                                          {intensity, "outputs.intensity"}, {project, "outputs.project"}};
+                                                          {intensity, "outputs.intensity"}, {project, "outputs.project"},
+                                                          {memory, "tiles.memory"},  {halo, "tiles.halo"},
+                                                          {tile_size, "tiles.size"}};
     for (const auto& [option, key] : flags) {
       if (option->count() == 0) continue;
       const std::string name(key);

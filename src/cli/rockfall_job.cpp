@@ -14,6 +14,8 @@
 #include "intensity_layer.hpp"
 #include "rockfall_layers.hpp"
 #include "run_project.hpp"
+#include "rockfall_tiles.hpp"
+#include "tile_plan.hpp"
 #include "truncated_trajectories.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/layer_writer.hpp"
@@ -23,6 +25,7 @@
 #include "talus/rockfall/fast_bounce.hpp"
 #include "talus/rockfall/full_model.hpp"
 #include "talus/rockfall/monte_carlo.hpp"
+#include "talus/rockfall/release_rock.hpp"
 #include "talus/rockfall/rockfall_shares.hpp"
 
 namespace talus::cli {
@@ -86,49 +89,86 @@ std::string single_trajectory_command(const std::vector<std::string>& command_li
 // run_rockfall, with a failing trajectory's error extended by the command that reproduces it
 // (ordered by its source and run, so that of several MPI ranks' failures the earliest is told).
 RockfallResult run_trajectories(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
-                                const TrajectoryModel& model, const RockfallOptions& o, Progress& progress) {
+                                const TrajectoryModel& model, const RockfallSettings& settings,
+                                const std::vector<std::string>& command_line, Progress& progress) {
   try {
-    return run_rockfall(ground, sources, model, o.settings, &progress);
+    return run_rockfall(ground, sources, model, settings, &progress);
   } catch (const TrajectoryFailure& failure) {
     throw OrderedFailure(std::string(failure.what()) + "; nothing was written; to rerun that trajectory alone: " +
-                             single_trajectory_command(o.command_line, failure.source, failure.run),
+                             single_trajectory_command(command_line, failure.source, failure.run),
                          {failure.source, failure.run});
   }
 }
 
-// The scene read and checked, before any trajectory.
+// How far around a rock at a halo's edge the trajectory models may look (m): two sample spacings
+// (the path between the samples that are checked against the halo), 10 m for the longest step,
+// and four times the largest rock's axis (its piston carpet, a fragment's start).
+double tile_margin(const RockfallOptions& o, const std::vector<ReleaseSource>& sources) {
+  double largest = o.settings.rock.axes.maxCoeff();
+  for (const ReleaseSource& s : sources) largest = std::max(largest, release_rock(o.settings.rock, s.conditions).axes.maxCoeff());
+  largest *= 1.0 + o.settings.stochastic.size_variation;
+  const double spacing = o.mode == "fast" ? o.fast.sample_spacing : o.full.sample_spacing;
+  return 2.0 * spacing + 10.0 + 4.0 * largest;
+}
+
+// The scene read and checked, before any trajectory: the region whole with its ground model, or,
+// when it runs in tiles, the region's DEM and release alone (the tiles read the rest).
 struct RockfallScene {
   RunChoices choices;
   gis::Scene scene;
-  GroundModel ground;
+  TilePlan plan;
+  std::optional<GroundModel> ground;
   std::vector<ReleaseSource> sources;
 };
 
 RockfallScene read_rockfall_scene(RockfallOptions& o, RunChoices choices) {
   o.inputs.run_rock = o.settings.rock;
-  gis::Scene scene = gis::load_scene(o.inputs);
-  GroundModel ground = scene.ground_model();
+  gis::Scene scene = gis::load_region(o.inputs);
   std::vector<ReleaseSource> sources = release_sources(*scene.release);
   const std::optional<std::uint64_t>& only_source = o.settings.only_source;
   if (only_source && *only_source >= sources.size()) {
     throw InputError("--only-source " + std::to_string(*only_source) + ": sources are numbered 0 to " +
                      std::to_string(sources.size() - 1) + " (" + o.inputs.release.string() + ")");
   }
-  return {std::move(choices), std::move(scene), std::move(ground), std::move(sources)};
+  TilePlan plan = plan_tiles(scene.dem.elevation.spec(), o.tiles, tile_margin(o, sources));
+  std::optional<GroundModel> ground;
+  if (!plan.tiled()) {
+    gis::add_ground_maps(scene);
+    ground.emplace(scene.ground_model());
+  }
+  return {std::move(choices), std::move(scene), std::move(plan), std::move(ground), std::move(sources)};
 }
 
 // This rank's share of the trajectories; on rank 0, every rank's shares joined (rockfall_shares.hpp).
 std::optional<RockfallResult> simulate_shares(const RockfallScene& r, const TrajectoryModel& model, RockfallOptions& o,
-                                              Progress& progress, const ProcessRanks& ranks) {
-  o.settings.share = {static_cast<std::uint32_t>(ranks.rank()), static_cast<std::uint32_t>(ranks.size())};
+                                              Progress& progress, const ProcessRanks& ranks, TileLines& tile_lines) {
+  o.settings.share = {static_cast<std::uint32_t>(ranks.rank()), static_cast<std::uint32_t>(ranks.size()), nullptr};
+  const TrajectoryRunner run = [&](const GroundModel& ground, const RockfallSettings& settings, Progress& part) {
+    return run_trajectories(ground, r.sources, model, settings, o.command_line, part);
+  };
+  if (r.plan.tiled()) return simulate_tiles(r.scene, r.plan, r.sources, o.settings, run, progress, ranks, tile_lines);
   std::optional<RockfallResult> share;
-  together(ranks, [&] { share = run_trajectories(r.ground, r.sources, model, o, progress); });
+  together(ranks, [&] { share = run(*r.ground, o.settings, progress); });
   if (ranks.size() == 1) return share;
   const std::vector<std::vector<std::uint8_t>> messages = ranks.gather(encode_share(*share));
   if (!ranks.root()) return std::nullopt;
   std::vector<RockfallResult> shares;
-  for (const auto& bytes : messages) shares.push_back(decode_share(bytes, r.ground.elevation_grid()));
+  for (const auto& bytes : messages) shares.push_back(decode_share(bytes, r.scene.dem.elevation));
   return join_shares(std::move(shares), o.settings);
+}
+
+// The tiles in run.json (issue 19, item 4): none when the run was not tiled.
+nlohmann::json tiles_record(const TilePlan& plan, const TileChoice& choice) {
+  if (!plan.tiled()) return nullptr;
+  const GridSpec& core = plan.tiles.front().core;
+  return {{"tiles", plan.tiles.size()},
+          {"tile_cells", std::max(core.width, core.height)},
+          {"halo_m", choice.halo},
+          {"halo_cells", plan.halo_cells},
+          {"margin_cells", plan.margin_cells},
+          {"memory_gb", plan.memory_bytes / 1e9},
+          {"estimated_tile_gb", plan.tile_bytes / 1e9},
+          {"estimated_region_gb", plan.region_bytes / 1e9}};
 }
 
 }  // namespace
@@ -148,7 +188,6 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   });
   const auto& [intensity, project] = read->choices;
   const gis::Scene& scene = read->scene;
-  const GroundModel& ground = read->ground;
   const std::vector<ReleaseSource>& sources = read->sources;
   gis::RunRecord record;
   record.set_command_line(o.command_line);
@@ -165,8 +204,17 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   }
 
   const auto simulate_start = std::chrono::steady_clock::now();
+  if (read->plan.tiled()) {
+    const TilePlan& plan = read->plan;
+    const GridSpec& core = plan.tiles.front().core;
+    output.say(printf_text("Tiles: %zu of at most %d x %d cells with a halo of %g m, for --memory %.3g GB "
+                           "(estimated %.3g GB a tile, %.3g GB for the region)",
+                           plan.tiles.size(), core.width, core.height, o.tiles.halo, plan.memory_bytes / 1e9,
+                           plan.tile_bytes / 1e9, plan.region_bytes / 1e9));
+  }
   const std::unique_ptr<TrajectoryModel> model = trajectory_model(o);
-  const std::optional<RockfallResult> joined = simulate_shares(*read, *model, o, output.progress, ranks);
+  TileLines tile_lines;
+  const std::optional<RockfallResult> joined = simulate_shares(*read, *model, o, output.progress, ranks, tile_lines);
   if (!ranks.root()) return;  // rank 0 writes
   const RockfallResult& result = *joined;
   const double simulate_seconds = seconds_since(simulate_start);
@@ -174,7 +222,7 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
 
   const auto write_start = std::chrono::steady_clock::now();
   const nlohmann::json intensity_entry = write_layers_with_intensity(writer, rockfall_hazard_layers(result.statistics.layers()), intensity);
-  gis::add_trajectories(writer, result.lines, ground.spec().crs_wkt);
+  gis::add_trajectories(writer, result.lines, scene.dem.elevation.spec().crs_wkt);
 
   record.add_input("dem", o.inputs.dem, &scene.dem.elevation.spec());
   if (!o.inputs.lithology.empty()) record.add_input("lithology", o.inputs.lithology, nullptr);
@@ -202,14 +250,18 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   record.set("runs", runs_record(result, o.settings));
   record.set("convergence", convergence_record(result, o.settings));
   if (intensity) record.set("intensity", intensity_entry);
+  record.set("tiles", tiles_record(read->plan, o.tiles));
   const std::vector<std::string> trajectory_problems =
-      o.mode == "fast" ? truncated_trajectory_problems(result.stop_counts, "[fast_bounce] max_time", o.fast.max_time)
-                       : truncated_trajectory_problems(result.stop_counts, "[full] max_time", o.full.max_time);
+      o.mode == "fast" ? truncated_trajectory_problems(result.stop_counts, "[fast_bounce] max_time", o.fast.max_time, o.tiles.halo)
+                       : truncated_trajectory_problems(result.stop_counts, "[full] max_time", o.full.max_time, o.tiles.halo);
+  std::vector<std::string> notes = scene.notes;
+  notes.insert(notes.end(), tile_lines.notes.begin(), tile_lines.notes.end());
   std::vector<std::string> problems = scene.problems;
+  problems.insert(problems.end(), tile_lines.problems.begin(), tile_lines.problems.end());
   problems.insert(problems.end(), trajectory_problems.begin(), trajectory_problems.end());
   const std::vector<std::string> unconverged = convergence_problems(result, o.settings);
   problems.insert(problems.end(), unconverged.begin(), unconverged.end());
-  record.set("notes", scene.notes);
+  record.set("notes", notes);
   record.set("problems", problems);
   record.add_timing("read_inputs", read_seconds);
   record.add_timing("simulate", simulate_seconds);
@@ -225,11 +277,14 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
                                      static_cast<unsigned long long>(result.trajectories), simulate_seconds,
                                      static_cast<double>(result.trajectories) / std::max(simulate_seconds, 1e-9), workers.c_str());
   for (std::size_t r = 0; r < result.stop_counts.size(); ++r) {
-    summary += printf_text("%s%s %llu", r ? ", " : "", to_string(static_cast<StopReason>(r)),
-                           static_cast<unsigned long long>(result.stop_counts[r]));
+    const auto reason = static_cast<StopReason>(r);
+    if (reason == StopReason::tile_edge && result.stop_counts[r] == 0) continue;  // shown when it happened
+    summary += printf_text("%s%s %llu", r ? ", " : "", to_string(reason), static_cast<unsigned long long>(result.stop_counts[r]));
   }
   if (result.fragments > 0) summary += printf_text("; fragments from fractures %llu", static_cast<unsigned long long>(result.fragments));
   output.say(summary);
+  for (const auto& note : tile_lines.notes) output.say("note: " + note);
+  for (const auto& problem : tile_lines.problems) output.say("problem: " + problem);
   for (const auto& line : convergence_lines(result, o.settings)) output.say(line);
   for (const auto& problem : trajectory_problems) output.say("problem: " + problem);
   for (const auto& problem : unconverged) output.say("problem: " + problem);

@@ -88,6 +88,13 @@ ParameterTable rockfall_parameter_table(RockfallOptions& o) {
   table.add("run", "threads", "", "threads (0: all cores); the layers do not depend on it", &o.settings.threads,
             Range{1, kMaxThreads, false, false, 0, "all cores"});
   table.add("run", "saved_trajectories", "", "at most this many lines in trajectories.gpkg", &o.settings.saved_trajectories, Range{0, 1e+07, false, false});
+  table.add("tiles", "memory", "GB",
+            "memory the run may use; a region whose ground model needs more runs in tiles (docs/study.md, Tiles)",
+            &o.tiles.memory, Range{0.1, 1e6, false, false, 0, "half of this machine's memory"});
+  table.add("tiles", "halo", "m", "how far beyond its tile a rock may run; one that reaches the halo's edge stops there "
+            "and is reported (stop reason tile_edge)", &o.tiles.halo, Range{0, 1e6, false, false});
+  table.add("tiles", "size", "cells", "cells on a side of a tile (without its halo)", &o.tiles.size,
+            Range{16, 1e6, false, false, 0, "the largest that [tiles] memory allows"});
   table.add("outputs", "project", "",
             "on: also write project.qgz, hillshade.tif and quicklook/*.png with QGIS (python3-qgis); off: not", &o.project);
   table.add("outputs", "intensity", "",

@@ -13,6 +13,7 @@
 #include "intensity_layer.hpp"
 #include "parameter_table.hpp"
 #include "run_choices.hpp"
+#include "tile_plan.hpp"
 #include "talus/gis/scene.hpp"
 #include "talus/rockfall/fast_bounce.hpp"
 #include "talus/rockfall/full_model.hpp"
@@ -35,6 +36,7 @@ struct RockfallOptions {
   FastBounceParameters fast;
   FullModelParameters full;
   double fracture_strength = FullModelParameters{}.fracture_strength / 1000.0;  // kN, into full.fracture_strength (N)
+  TileChoice tiles;            // [tiles], --memory, --halo, --tile-size (tile_plan.hpp)
   std::vector<std::string> command_line;
 };
 

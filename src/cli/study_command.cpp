@@ -19,6 +19,7 @@ void add_study_command(CLI::App& app, Action& action, const std::vector<std::str
     std::filesystem::path file;
     StudyChoices choices;
     int threads = 0;
+    double memory = 0;
     std::string project = "on";
   };
   auto o = std::make_shared<Options>();
@@ -27,10 +28,12 @@ void add_study_command(CLI::App& app, Action& action, const std::vector<std::str
   cmd->add_option("file", o->file, "Study file (TOML): the region's inputs and its scenarios")->required();
   cmd->add_option("--out", o->choices.out, "Output folder: scenarios/NAME per scenario, study.json")->required();
   auto* threads = cmd->add_option("--threads", o->threads, "Threads of every scenario (default: its [run] threads, all cores)");
+  auto* memory = cmd->add_option("--memory", o->memory,
+                                 "GB each rock-fall scenario may use; a larger region runs in tiles (docs/study.md, Tiles)");
   cmd->add_option("--project", o->project,
                   "on (default): also write project.qgz, hillshade.tif and quicklook/hazard.png with QGIS; off");
-  cmd->callback([o, &action, &ranks, threads] {
-    action = [o, &ranks, threads] {
+  cmd->callback([o, &action, &ranks, threads, memory] {
+    action = [o, &ranks, threads, memory] {
       o->choices.project = project_wanted(o->project);
       if (threads->count() > 0) {
         if (o->threads < 0 || o->threads > kMaxThreads) {
@@ -39,6 +42,7 @@ void add_study_command(CLI::App& app, Action& action, const std::vector<std::str
         }
         o->choices.threads = o->threads;
       }
+      if (memory->count() > 0) o->choices.memory = o->memory;  // range-checked with each scenario's [tiles]
       const Study study = read_study(o->file);
       TerminalProgress progress(ranks.root());
       study_job(study, o->choices, JobOutput{rank_say(ranks.root()), progress}, ranks);

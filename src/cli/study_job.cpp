@@ -89,6 +89,13 @@ void set_up(Run& run, const Study& study, const StudyScenario& s, const StudyCho
   }
 }
 
+// A rock-fall scenario's --memory (mud flows are not tiled, docs/study.md "Tiles").
+void set_memory(RockfallScenarioRun& run, const StudyChoices& choices) {
+  if (!choices.memory) return;
+  run.options.tiles.memory = *choices.memory;
+  run.table.pin("tiles", "memory", "--memory");
+}
+
 // What checking a scenario tells the study: its [outputs] intensity, and the record its layers
 // depend on (study_units.hpp).
 struct CheckedScenario {
@@ -113,9 +120,14 @@ CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const
   if (s.process == StudyProcess::rockfall) {
     RockfallScenarioRun run;
     set_up(run, study, s, choices);
+    set_memory(run, choices);
     resolve_rockfall_parameters(run.options, run.table);
     run.options.inputs.run_rock = run.options.settings.rock;
-    if (!s.detect_sources) gis::load_scene(run.options.inputs);  // detected sources: read by detect_sources()
+    if (!s.detect_sources) {  // detected sources: read by detect_sources()
+      // A region run in tiles reads its other maps tile by tile, during the run.
+      gis::Scene scene = gis::load_region(run.options.inputs);
+      if (!plan_tiles(scene.dem.elevation.spec(), run.options.tiles, 0).tiled()) gis::add_ground_maps(scene);
+    }
     return {run.options.intensity, unit_record(s, nlohmann::ordered_json::parse(run.table.values().dump()),
                                                input_files(run.options, s), checksums)};
   }
@@ -136,6 +148,7 @@ void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices
   if (s.process == StudyProcess::rockfall) {
     RockfallScenarioRun run;
     set_up(run, study, s, choices);
+    set_memory(run, choices);
     rockfall_job(run.options, run.table, output, ranks);
     return;
   }
@@ -228,6 +241,7 @@ nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choi
                          {"counts", run["counts"]},
                          {"problems", run["problems"]},
                          {"volumes_m3", run.value("volumes_m3", nlohmann::json())},
+                         {"tiles", run.value("tiles", nlohmann::json())},
                          {"timings_s", run["timings_s"]}});
     total += seconds[k];
   }

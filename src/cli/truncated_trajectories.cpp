@@ -10,10 +10,13 @@
 namespace talus::cli {
 
 std::vector<std::string> truncated_trajectory_problems(const std::vector<std::uint64_t>& stop_counts,
-                                                       const std::string& max_time_key, double max_time_s) {
+                                                       const std::string& max_time_key, double max_time_s,
+                                                       double halo_m) {
   const std::uint64_t rocks = std::accumulate(stop_counts.begin(), stop_counts.end(), std::uint64_t{0});
   char limit[64];
   std::snprintf(limit, sizeof limit, "%g s", max_time_s);
+  char halo[64];
+  std::snprintf(halo, sizeof halo, "%g m", halo_m);
   const struct {
     StopReason reason;
     std::string what;
@@ -23,6 +26,8 @@ std::vector<std::string> truncated_trajectory_problems(const std::vector<std::ui
       {StopReason::left_dem, "left the DEM's extent; the layers end at its edge, so the area beyond may be reached too"},
       {StopReason::max_time, "were still moving at the time limit (" + max_time_key + " = " + limit +
                                  "); the layers miss the rest of their paths: raise " + max_time_key},
+      {StopReason::tile_edge, "reached the edge of their tile's halo ([tiles] halo = " + std::string(halo) +
+                                  ") and were stopped there; the layers miss the rest of their paths: raise --halo"},
   };
   std::vector<std::string> problems;
   for (const auto& cause : causes) {

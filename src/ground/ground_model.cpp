@@ -36,6 +36,8 @@ GroundModel::GroundModel(Grid<double> elevation, Grid<GroundMaterial> node_mater
       y0_(elevation_.spec().geotransform[3]),
       inverse_dx_(1.0 / elevation_.spec().geotransform[1]),
       inverse_dy_(1.0 / elevation_.spec().geotransform[5]),
+      col_offset_(elevation_.spec().col_offset),
+      row_offset_(elevation_.spec().row_offset),
       last_col_(elevation_.spec().width - 1.0),
       last_row_(elevation_.spec().height - 1.0),
       last_col_square_(elevation_.spec().width > 1 ? elevation_.spec().width - 2 : 0),

@@ -67,12 +67,12 @@ void CellQuantiles::write(ByteWriter& out) const {
 }
 
 void CellQuantiles::read(ByteReader& in) {
-  if (in.get<std::uint64_t>() != size() || !histograms_.empty()) {
+  if (in.get_cell_count() != size() || !histograms_.empty()) {
     throw std::runtime_error("rank message: quantiles of another grid");
   }
   const std::uint64_t reached = in.get<std::uint64_t>();
   for (std::uint64_t i = 0; i < reached; ++i) {
-    const auto cell = in.get<std::uint32_t>();
+    const auto cell = in.get_cell<std::uint32_t>();
     if (cell >= size() || slot_[cell] != no_histogram) throw std::runtime_error("rank message: a cell outside the grid");
     new_histogram(cell).read(in);
   }

@@ -115,10 +115,10 @@ void CellSourceSets::write(ByteWriter& out) const {
 }
 
 void CellSourceSets::read(ByteReader& in) {
-  if (in.get<std::uint64_t>() != size() || !sets_.empty()) throw std::runtime_error("rank message: source sets of another grid");
+  if (in.get_cell_count() != size() || !sets_.empty()) throw std::runtime_error("rank message: source sets of another grid");
   const std::uint64_t reached = in.get<std::uint64_t>();
   for (std::uint64_t i = 0; i < reached; ++i) {
-    const auto cell = in.get<std::uint32_t>();
+    const auto cell = in.get_cell<std::uint32_t>();
     if (cell >= size() || slot_[cell] != no_set) throw std::runtime_error("rank message: a cell outside the grid");
     in.get_vector(set(cell));
   }

@@ -49,9 +49,13 @@ Eigen::Quaterniond random_orientation(CounterRandom& random) {
 // Follows one run for its summary (path length, largest energy and stop reason of its first
 // fragment, every fragment's stop) and, when the run is one of the saved sample, its first
 // fragment's line; forwards everything to the statistics recorder.
+// Thrown by a tile's RunObserver when a sample leaves the tile's halo (TileBounds).
+struct ReachedTileEdge {};
+
 class RunObserver final : public TrajectoryObserver {
  public:
-  explicit RunObserver(RockfallStatistics::Recorder& recorder) : recorder_(recorder) {}
+  RunObserver(RockfallStatistics::Recorder& recorder, const std::optional<TileBounds>& tile)
+      : recorder_(recorder), tile_(tile) {}
   void start(TrajectoryLine* line) {
     line_ = line;
     path_length_ = 0;
@@ -62,6 +66,8 @@ class RunObserver final : public TrajectoryObserver {
     fragments_ = 0;
   }
   void on_sample(const TrajectorySample& sample) override {
+    if (tile_ && !tile_->contains(sample.position.x(), sample.position.y())) throw ReachedTileEdge{};
+    last_sample_ = sample;
     recorder_.on_sample(sample);
     if (!following_) return;
     if (has_last_) path_length_ += (sample.position - last_).head<2>().norm();
@@ -89,6 +95,8 @@ class RunObserver final : public TrajectoryObserver {
     ++fragments_;
     recorder_.on_fragment(start);
   }
+  // The model was left by ReachedTileEdge: the trajectory stops at its last sample on the tile.
+  void stop_at_tile_edge() { on_stop(last_sample_, StopReason::tile_edge); }
   double path_length() const { return path_length_; }
   // Appends the sample to the saved line unless it would end a zero-length segment.
   void keep_vertex(const TrajectorySample& sample) {
@@ -102,6 +110,8 @@ class RunObserver final : public TrajectoryObserver {
 
  private:
   RockfallStatistics::Recorder& recorder_;
+  const std::optional<TileBounds>& tile_;
+  TrajectorySample last_sample_;
   TrajectoryLine* line_ = nullptr;
   double path_length_ = 0, max_energy_ = 0;
   Eigen::Vector3d last_ = Eigen::Vector3d::Zero();
@@ -224,7 +234,7 @@ class SourceBatches {
       state.done = rule_.first_run();
     }
     for (std::size_t position = 0; position < states_.size(); ++position) {
-      if (!settings.share.owns(position)) continue;
+      if (!settings.share.owns(position, states_[position].source)) continue;
       open_batch(position, rule_.first_end());
       ++owned_;
     }
@@ -399,7 +409,7 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       settings.saved_trajectories == 0 ? 0 : std::max<std::uint64_t>(1, (sampled + settings.saved_trajectories - 1) / settings.saved_trajectories);
   const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
 
-  RockfallResult result{RockfallStatistics(ground.elevation_grid()), {}, std::vector<std::uint64_t>(4, 0), {}, 0, threads, 0, {}, std::nullopt, std::nullopt};
+  RockfallResult result{RockfallStatistics(ground.elevation_grid()), {}, std::vector<std::uint64_t>(kStopReasonCount, 0), {}, 0, threads, 0, {}, std::nullopt, std::nullopt};
   std::vector<std::pair<RunKey, double>> runouts;
   std::atomic<bool> cancelled{false};
   // A run that throws (NumericalFailure: exit code 3) ends them all; the earliest such run's
@@ -420,9 +430,9 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
   {
     RockfallStatistics statistics(ground.elevation_grid());
     RockfallStatistics::Recorder recorder = statistics.recorder();
-    RunObserver observer(recorder);
+    RunObserver observer(recorder, settings.tile);
     std::vector<TrajectoryLine> lines;
-    std::vector<std::uint64_t> stop_counts(4, 0);
+    std::vector<std::uint64_t> stop_counts(kStopReasonCount, 0);
     std::vector<std::pair<RunKey, double>> thread_runouts;
     std::vector<EnvelopeCell> crossed;
     std::uint64_t fragments = 0;
@@ -451,6 +461,8 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
             model.run(perturbed, draws.rock, draws.start, observer);
           } catch (const NumericalFailure& e) {
             throw TrajectoryFailure(e.what(), source_index, run);
+          } catch (const ReachedTileEdge&) {
+            observer.stop_at_tile_edge();
           }
           if (rule.tested()) recorder.append_envelope(crossed);
           recorder.commit(source_index);

@@ -74,8 +74,9 @@ std::vector<std::uint8_t> encode_share(const RockfallResult& share) {
   return out.take();
 }
 
-RockfallResult decode_share(const std::vector<std::uint8_t>& bytes, const Grid<double>& dem) {
-  ByteReader in(bytes);
+RockfallResult decode_share(const std::vector<std::uint8_t>& bytes, const Grid<double>& dem, const GridSpec& tile) {
+  if (tile.is_window() && !tile.whole().same_grid(dem.spec())) throw std::invalid_argument("decode_share: a tile of another grid");
+  ByteReader in(bytes, tile);
   RockfallResult share{RockfallStatistics(dem), {}, {}, {}, 0, 1, 0, {}, std::nullopt, std::nullopt};
   share.statistics.read(in);
   share.lines.resize(in.get<std::uint64_t>());
@@ -100,26 +101,25 @@ RockfallResult decode_share(const std::vector<std::uint8_t>& bytes, const Grid<d
 
 RockfallResult join_shares(std::vector<RockfallResult> shares, const RockfallSettings& settings) {
   if (shares.empty()) throw std::invalid_argument("join_shares: no shares");
-  RockfallResult whole = std::move(shares.front());
-  const std::size_t source_count = whole.runs_by_source.size();
+  const std::size_t source_count = shares.front().runs_by_source.size();
   // runouts: each share's in (source, run) order; the whole run's interleaves them source by
-  // source, taking each selected source's runs from the share that owns its position.
+  // source, taking each source's runs from the share that simulated it (a source belongs to one
+  // share, whether the shares are MPI ranks' or tiles', and every simulated source has runs).
   std::vector<std::size_t> next_runout(shares.size(), 0);
   std::vector<double> runouts;
-  runouts.reserve(whole.runouts.size());
-  std::size_t position = 0;
+
   for (std::uint64_t source = 0; source < source_count; ++source) {
-    if (settings.only_source && *settings.only_source != source) continue;
-    const std::size_t owner = (position / SourceShare::block) % shares.size();
-    ++position;
-    const std::vector<std::uint64_t>& runs = owner == 0 ? whole.runs_by_source : shares[owner].runs_by_source;
-    const std::vector<double>& from = owner == 0 ? whole.runouts : shares[owner].runouts;
+    std::size_t owner = 0;
+    while (owner < shares.size() && shares[owner].runs_by_source[source] == 0) ++owner;
+    if (owner == shares.size()) continue;
+    const std::vector<double>& from = shares[owner].runouts;
     const std::size_t begin = next_runout[owner];
-    next_runout[owner] += runs[source];
+    next_runout[owner] += shares[owner].runs_by_source[source];
     if (next_runout[owner] > from.size()) throw std::runtime_error("join_shares: a share lacks runs it owns");
     runouts.insert(runouts.end(), from.begin() + static_cast<std::ptrdiff_t>(begin),
                    from.begin() + static_cast<std::ptrdiff_t>(next_runout[owner]));
   }
+  RockfallResult whole = std::move(shares.front());
   for (std::size_t r = 1; r < shares.size(); ++r) {
     RockfallResult& share = shares[r];
     whole.statistics.merge(share.statistics);

@@ -10,6 +10,7 @@ const char* to_string(StopReason reason) {
     case StopReason::max_time: return "max_time";
     case StopReason::left_dem: return "left_dem";
     case StopReason::nodata_area: return "nodata_area";
+    case StopReason::tile_edge: return "tile_edge";
   }
   return "unknown";
 }

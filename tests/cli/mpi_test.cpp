@@ -4,54 +4,16 @@
 // code as one process, and nothing written.
 #include <gtest/gtest.h>
 
-#include <ogrsf_frmts.h>
-
 #include <fstream>
-#include <sstream>
 
 #include "run_talus.hpp"
+#include "same_outputs.hpp"
 #include "test_paths.hpp"
 
 namespace talus {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
-// Every .tif under `a` has a byte-identical twin under `b`; returns how many were compared.
-int expect_same_rasters(const fs::path& a, const fs::path& b) {
-  int compared = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(a)) {
-    if (entry.path().extension() != ".tif") continue;
-    const fs::path twin = b / fs::relative(entry.path(), a);
-    EXPECT_TRUE(fs::exists(twin)) << twin;
-    EXPECT_TRUE(file_bytes(entry.path()) == file_bytes(twin)) << entry.path() << " differs from " << twin;
-    ++compared;
-  }
-  return compared;
-}
-
-// Every trajectory of a run's trajectories.gpkg: its ids and its line as WKT.
-std::vector<std::string> trajectory_lines(const fs::path& out) {
-  GDALAllRegister();
-  GDALDatasetUniquePtr data(GDALDataset::Open((out / "trajectories.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  std::vector<std::string> lines;
-  if (!data) return lines;
-  for (auto& feature : *data->GetLayerByName("trajectories")) {
-    char* wkt = nullptr;
-    feature->GetGeometryRef()->exportToWkt(&wkt);
-    lines.push_back(std::to_string(feature->GetFieldAsInteger64("source_id")) + "/" +
-                    std::to_string(feature->GetFieldAsInteger64("run_id")) + " " + wkt);
-    CPLFree(wkt);
-  }
-  return lines;
-}
 
 std::vector<std::string> sample_rockfall(const std::string& out, const std::string& threads) {
   const fs::path sample = test::source_dir() / "sample_dem";
@@ -71,10 +33,10 @@ TEST(Mpi, RockfallLayersAndLinesEqualOneProcessBitForBitForAnyRankCount) {
     EXPECT_NE(split.out.find(std::to_string(ranks) + " MPI ranks x 1 threads"), std::string::npos) << split.out;
     // Rank 0 alone prints: the layers' line once.
     EXPECT_EQ(split.out.find("Layers written"), split.out.rfind("Layers written")) << split.out;
-    EXPECT_EQ(expect_same_rasters(folder / "one", folder / out), 11);
-    const std::vector<std::string> lines = trajectory_lines(folder / out);
+    EXPECT_EQ(test::expect_same_rasters(folder / "one", folder / out), 11);
+    const std::vector<std::string> lines = test::trajectory_lines(folder / out);
     EXPECT_GT(lines.size(), 100u);
-    EXPECT_EQ(lines, trajectory_lines(folder / "one"));
+    EXPECT_EQ(lines, test::trajectory_lines(folder / "one"));
   }
   fs::remove_all(folder);
 }
@@ -100,7 +62,7 @@ TEST(Mpi, StudyScenariosAndHazardMapEqualOneProcessBitForBit) {
   // The second mud flow runs on rank 1, beside the first on rank 0.
   EXPECT_NE(split.out.find("runs on MPI rank 1"), std::string::npos) << split.out;
   // Four scenarios' layers, the detected sources, the three hazard maps and the region layers.
-  EXPECT_GE(expect_same_rasters(folder / "one", folder / "two"), 2 * 11 + 2 * 6 + 1 + 3 + 12);
+  EXPECT_GE(test::expect_same_rasters(folder / "one", folder / "two"), 2 * 11 + 2 * 6 + 1 + 3 + 12);
   EXPECT_TRUE(fs::exists(folder / "two" / "study.json"));
   EXPECT_TRUE(fs::exists(folder / "two" / "hazard" / "hazard_zones.gpkg"));
 
@@ -111,7 +73,7 @@ TEST(Mpi, StudyScenariosAndHazardMapEqualOneProcessBitForBit) {
   std::size_t resumed = 0;
   for (auto at = again.out.find("already done"); at != std::string::npos; at = again.out.find("already done", at + 1)) ++resumed;
   EXPECT_EQ(resumed, 4u) << again.out;  // rank 0 decides for every rank, the mud flow of rank 1 too
-  EXPECT_GE(expect_same_rasters(folder / "one", folder / "two"), 2 * 11 + 2 * 6 + 1 + 3 + 12);
+  EXPECT_GE(test::expect_same_rasters(folder / "one", folder / "two"), 2 * 11 + 2 * 6 + 1 + 3 + 12);
   fs::remove_all(folder);
 }
 

@@ -11,6 +11,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "talus/core/grid_spec.hpp"
+
 namespace talus {
 
 class ByteWriter {
@@ -53,6 +55,25 @@ class ByteWriter {
 class ByteReader {
  public:
   explicit ByteReader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+  // Reads a tile's message into the whole grid's arrays (issue 19, item 4): its per-cell arrays
+  // cover the window `tile` (GridSpec), and their cells are renumbered on the whole grid.
+  ByteReader(std::span<const std::uint8_t> bytes, const GridSpec& tile) : bytes_(bytes), tile_(tile) {}
+
+  // The cell count a per-cell array was written with; from a tile, its whole grid's.
+  std::uint64_t get_cell_count() {
+    const auto n = get<std::uint64_t>();
+    if (!tile_.is_window()) return n;
+    if (n != tile_.cell_count()) throw std::runtime_error("rank message: a per-cell array of another tile");
+    return tile_.whole().cell_count();
+  }
+  // A cell's index; from a tile, on its whole grid.
+  template <class T>
+  T get_cell() {
+    const T cell = get<T>();
+    if (!tile_.is_window()) return cell;
+    if (cell >= tile_.cell_count()) throw std::runtime_error("rank message: a cell outside the tile");
+    return static_cast<T>(tile_.whole_index(cell));
+  }
   template <class T>
   T get() {
     static_assert(std::is_trivially_copyable_v<T>);
@@ -72,10 +93,10 @@ class ByteReader {
   // Into an array of the writer's size, whose cells are all zero.
   template <class T, class A>
   void get_sparse(std::vector<T, A>& cells) {
-    if (get<std::uint64_t>() != cells.size()) throw std::runtime_error("rank message: a per-cell array of another grid");
+    if (get_cell_count() != cells.size()) throw std::runtime_error("rank message: a per-cell array of another grid");
     const std::uint64_t non_zero = get<std::uint64_t>();
     for (std::uint64_t k = 0; k < non_zero; ++k) {
-      const std::uint64_t i = get<std::uint64_t>();
+      const std::uint64_t i = get_cell<std::uint64_t>();
       if (i >= cells.size()) throw std::runtime_error("rank message: a cell outside the grid");
       cells[i] = get<T>();
     }
@@ -85,6 +106,7 @@ class ByteReader {
  private:
   std::span<const std::uint8_t> bytes_;
   std::size_t offset_ = 0;
+  GridSpec tile_;  // whole unless reading a tile's message
 };
 
 }  // namespace talus

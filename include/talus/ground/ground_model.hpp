@@ -54,8 +54,8 @@ class GroundModel {
 
   // True where (x, y) lies between four valid nodes, so the surface is defined there (NaN outside).
   bool contains(double x, double y) const {
-    const double col = (x - x0_) * inverse_dx_ - 0.5;
-    const double row = (y - y0_) * inverse_dy_ - 0.5;
+    const double col = (x - x0_) * inverse_dx_ - 0.5 - col_offset_;
+    const double row = (y - y0_) * inverse_dy_ - 0.5 - row_offset_;
     if (!(col >= 0.0 && col <= last_col_ && row >= 0.0 && row <= last_row_)) return false;
     const std::size_t i00 = static_cast<std::size_t>(lower_node(row, last_row_square_)) * width_ +
                             static_cast<std::size_t>(lower_node(col, last_col_square_));
@@ -66,8 +66,8 @@ class GroundModel {
   // (continuous node coordinates: node (col, row) at integer values; the lower node is clamped
   // so that the last line of nodes belongs to the square before it).
   NodeSquare locate(double x, double y) const {
-    const double col = (x - x0_) * inverse_dx_ - 0.5;
-    const double row = (y - y0_) * inverse_dy_ - 0.5;
+    const double col = (x - x0_) * inverse_dx_ - 0.5 - col_offset_;
+    const double row = (y - y0_) * inverse_dy_ - 0.5 - row_offset_;
     const int col0 = lower_node(col, last_col_square_);
     const int row0 = lower_node(row, last_row_square_);
     NodeSquare square;
@@ -164,6 +164,7 @@ class GroundModel {
   Grid<GroundMaterial> materials_;
   double x0_, y0_;                      // m: geotransform[0], geotransform[3]
   double inverse_dx_, inverse_dy_;      // 1/m: 1 / geotransform[1], 1 / geotransform[5]
+  double col_offset_, row_offset_;      // a tile's window (GridSpec): its first node on the whole grid
   double last_col_, last_row_;          // node coordinates of the last column and row
   int last_col_square_, last_row_square_;  // largest lower-left node of a square
   std::size_t width_;                   // nodes per row

@@ -21,15 +21,18 @@ class CellFrame {
  public:
   explicit CellFrame(const GridSpec& spec)
       : x0_(spec.geotransform[0]), dx_(spec.geotransform[1]), y0_(spec.geotransform[3]),
-        dy_(spec.geotransform[5]), width_(spec.width), height_(spec.height) {}
-  double u(double x) const { return (x - x0_) / dx_; }
-  double v(double y) const { return (y - y0_) / dy_; }
+        dy_(spec.geotransform[5]), col_offset_(spec.col_offset), row_offset_(spec.row_offset), width_(spec.width),
+        height_(spec.height) {}
+  // On a tile's window (GridSpec), the whole grid's coordinate less the window's offset.
+  double u(double x) const { return (x - x0_) / dx_ - col_offset_; }
+  double v(double y) const { return (y - y0_) / dy_ - row_offset_; }
   int width() const { return width_; }
   int height() const { return height_; }
   bool inside(double u, double v) const { return u >= 0 && v >= 0 && u < width_ && v < height_; }
 
  private:
   double x0_, dx_, y0_, dy_;
+  double col_offset_, row_offset_;
   int width_, height_;
 };
 

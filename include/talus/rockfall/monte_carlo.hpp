@@ -6,7 +6,9 @@
 // exactly, so the layers are bit-identical for any thread count.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,7 +46,20 @@ struct SourceShare {
   std::uint32_t rank = 0;
   std::uint32_t ranks = 1;
   static constexpr std::size_t block = 16;
-  bool owns(std::size_t position) const { return (position / block) % ranks == rank; }
+  // A unit of work of a tiled run (issue 19, items 4 and 5; docs/study.md, "Tiles"): only the
+  // sources it selects; none: every source.
+  std::shared_ptr<const std::vector<bool>> unit;
+  bool owns(std::size_t position, std::uint64_t source) const {
+    return (position / block) % ranks == rank && (!unit || (*unit)[source]);
+  }
+};
+
+// Where a tile's trajectories must stop (issue 19, item 4): the edge of its halo, beyond which
+// the tile's ground is not the whole DEM's. Infinite on the sides where the tile reaches the
+// DEM's own edge. A trajectory with a sample outside stops there (StopReason::tile_edge).
+struct TileBounds {
+  double x_min = -HUGE_VAL, x_max = HUGE_VAL, y_min = -HUGE_VAL, y_max = HUGE_VAL;  // m
+  bool contains(double x, double y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
 };
 
 struct RockfallSettings {
@@ -61,7 +76,8 @@ struct RockfallSettings {
   // With auto_runs, only_source runs that source's batches as the whole run does; only_run
   // simulates that one run of each source, without batches or a convergence test.
   std::optional<std::uint64_t> only_source, only_run;
-  SourceShare share;                    // the whole run unless split among MPI ranks
+  SourceShare share;                    // the whole run unless split among MPI ranks or tiles
+  std::optional<TileBounds> tile;       // a tile's run: its halo's edge
 };
 
 // A trajectory that failed numerically (NumericalFailure), with the source and run (0-based)

@@ -16,11 +16,15 @@ namespace talus {
 // One share's result as bytes (core/byte_stream.hpp).
 std::vector<std::uint8_t> encode_share(const RockfallResult& share);
 
-// The bytes of encode_share, for a run on `dem` (the statistics' grid).
-RockfallResult decode_share(const std::vector<std::uint8_t>& bytes, const Grid<double>& dem);
+// The bytes of encode_share, for a run on `dem` (the statistics' grid). A tile's share (issue 19,
+// item 4), simulated on the window `tile` of `dem`'s grid, is decoded onto the whole of `dem`.
+RockfallResult decode_share(const std::vector<std::uint8_t>& bytes, const Grid<double>& dem,
+                            const GridSpec& tile = GridSpec{});
 
-// The whole run's result from the shares of ranks 0 .. shares.size() - 1 (shares[r] simulated
-// with settings.share = {r, shares.size()}), as run_rockfall returns it for settings.share = {0, 1}.
+// The whole run's result from shares that split its sources between them, each source's runs in
+// one share: MPI ranks' (shares[r] simulated with settings.share = {r, shares.size()}) or tiles'
+// (decoded onto the whole grid), as run_rockfall returns it for settings.share = {0, 1}. The
+// result's `threads` is the first share's.
 RockfallResult join_shares(std::vector<RockfallResult> shares, const RockfallSettings& settings);
 
 }  // namespace talus

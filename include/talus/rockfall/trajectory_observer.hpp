@@ -5,6 +5,8 @@
 // its fragments one after the other, each begun by on_fragment.
 #pragma once
 
+#include <cstddef>
+
 #include <Eigen/Core>
 
 #include "talus/core/grid_spec.hpp"
@@ -16,7 +18,9 @@ enum class StopReason {
   max_time,       // the simulated time limit was reached
   left_dem,       // the rock left the DEM's extent
   nodata_area,    // the rock entered cells without elevation
+  tile_edge,      // the rock reached the edge of its tile's halo (a tiled run, docs/study.md "Tiles")
 };
+inline constexpr std::size_t kStopReasonCount = 5;
 const char* to_string(StopReason reason);
 
 // Why a rock at `at` (m), where the ground is not defined, stops: left_dem outside the DEM's node

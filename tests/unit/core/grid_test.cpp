@@ -2,6 +2,7 @@
 #include "talus/core/grid.hpp"
 
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,37 @@ TEST(Grid, CombineRefusesGridsWithDifferentSpecs) {
   } catch (const GridMismatch& error) {
     EXPECT_NE(std::string(error.what()).find("slope and lithology"), std::string::npos);
   }
+}
+
+}  // namespace
+}  // namespace talus
+
+namespace talus {
+namespace {
+
+// Issue 19, item 4: a window keeps the whole grid's geotransform, so points fall in the same
+// cells by the same rounding; GDAL sees its own origin.
+TEST(GridWindow, MapsPointsToTheSameCellsAsTheWholeGrid) {
+  GridSpec whole = small_spec();
+  whole.width = 400;
+  whole.height = 300;
+  const GridSpec window = whole.window(123, 45, 50, 60);
+  EXPECT_TRUE(window.is_window());
+  EXPECT_TRUE(window.whole().same_grid(whole));
+  EXPECT_FALSE(window.same_grid(whole));
+  for (const double x : {500.0 + 123 * 2.0, 747.3, 500.0 + 172.75 * 2.0}) {
+    EXPECT_EQ(window.col_of(x), whole.col_of(x) - 123) << x;
+  }
+  for (const double y : {900.0 - 45 * 2.5, 770.123456789}) EXPECT_EQ(window.row_of(y), whole.row_of(y) - 45) << y;
+  EXPECT_EQ(window.node_x(0), whole.node_x(123));
+  EXPECT_EQ(window.node_y(59), whole.node_y(104));
+  EXPECT_EQ(window.whole_index(0), whole.width * 45u + 123u);
+  EXPECT_EQ(window.whole_index(50 * 2 + 7), whole.width * 47u + 130u);
+  const auto gt = window.own_geotransform();
+  EXPECT_EQ(gt[0], 500.0 + 123 * 2.0);
+  EXPECT_EQ(gt[3], 900.0 - 45 * 2.5);
+  EXPECT_THROW(whole.window(390, 0, 20, 10), std::invalid_argument);
+  EXPECT_THROW(window.window(0, 0, 1, 1), std::invalid_argument);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -38,7 +39,7 @@ class RockfallShares : public ::testing::Test {
   RockfallResult split(RockfallSettings settings, std::uint32_t ranks) const {
     std::vector<RockfallResult> shares;
     for (std::uint32_t r = 0; r < ranks; ++r) {
-      settings.share = {r, ranks};
+      settings.share = {r, ranks, nullptr};
       shares.push_back(decode_share(encode_share(run(settings)), ground_.elevation_grid()));
     }
     return join_shares(std::move(shares), settings);
@@ -113,11 +114,64 @@ TEST_F(RockfallShares, OneSourceOrOneRunJoinsToTheWholeRun) {
 
 TEST_F(RockfallShares, AShareSimulatesOnlyItsBlocksOfSources) {
   RockfallSettings settings = settings_;
-  settings.share = {1, 2};
+  settings.share = {1, 2, nullptr};
   const RockfallResult share = run(settings);
   for (std::size_t s = 0; s < sources_.size(); ++s) {
     EXPECT_EQ(share.runs_by_source[s], (s / SourceShare::block) % 2 == 1 ? 12u : 0u) << "source " << s;
   }
+}
+
+// A grid's values on a window of it (GridSpec::window).
+template <class T>
+Grid<T> cut(const Grid<T>& whole, const GridSpec& window) {
+  Grid<T> part(window);
+  for (int row = 0; row < window.height; ++row) {
+    for (int col = 0; col < window.width; ++col) part.at(col, row) = whole.at(col + window.col_offset, row + window.row_offset);
+  }
+  return part;
+}
+
+// Issue 19, item 4: two tiles, the sources of rows 0-14 and of rows 15-29, each run on its window
+// of the ground with a halo of 5 rows, decoded onto the whole grid and joined, give the whole
+// run's result bit for bit (the rocks run down the slope, along x, and stay within the halo);
+// a narrower halo stops rocks at its edge.
+TEST_F(RockfallShares, TilesOnTheirWindowsJoinToTheWholeRun) {
+  const GridSpec& grid = ground_.spec();
+  const auto tile_run = [&](int first_row, int rows, int halo_rows, int margin_rows, bool automatic) {
+    const int r0 = std::max(0, first_row - halo_rows - margin_rows);
+    const int r1 = std::min(grid.height, first_row + rows + halo_rows + margin_rows);
+    const GridSpec window = grid.window(0, r0, grid.width, r1 - r0);
+    const GroundModel tile_ground(cut(ground_.elevation_grid(), window), cut(ground_.material_grid(), window));
+    RockfallSettings settings = settings_;
+    settings.auto_runs = automatic;
+    auto in_tile = std::make_shared<std::vector<bool>>(sources_.size());
+    for (std::size_t s = 0; s < sources_.size(); ++s) {
+      const double row = grid.row_of(sources_[s].y);
+      (*in_tile)[s] = row >= first_row - 0.5 && row < first_row + rows - 0.5;
+    }
+    settings.share.unit = in_tile;
+    TileBounds bounds;
+    if (first_row - halo_rows > 0) bounds.y_max = grid.geotransform[3] + (first_row - halo_rows) * grid.geotransform[5];
+    if (first_row + rows + halo_rows < grid.height) {
+      bounds.y_min = grid.geotransform[3] + (first_row + rows + halo_rows) * grid.geotransform[5];
+    }
+    settings.tile = bounds;
+    const RockfallResult result = run_rockfall(tile_ground, sources_, FastBounce(), settings, nullptr);
+    return decode_share(encode_share(result), ground_.elevation_grid(), window);
+  };
+  for (const bool automatic : {false, true}) {
+    SCOPED_TRACE(automatic);
+    RockfallSettings settings = settings_;
+    settings.auto_runs = automatic;
+    std::vector<RockfallResult> tiles;
+    tiles.push_back(tile_run(0, 15, 5, 3, automatic));
+    tiles.push_back(tile_run(15, 15, 5, 3, automatic));
+    const std::size_t stopped = static_cast<std::size_t>(StopReason::tile_edge);
+    ASSERT_EQ(tiles[0].stop_counts[stopped] + tiles[1].stop_counts[stopped], 0u);
+    expect_same(join_shares(std::move(tiles), settings), run(settings));
+  }
+  const RockfallResult narrow = tile_run(0, 15, 0, 3, false);
+  EXPECT_GT(narrow.stop_counts[static_cast<std::size_t>(StopReason::tile_edge)], 0u);
 }
 
 TEST_F(RockfallShares, ATruncatedMessageIsRefused) {

@@ -57,4 +57,14 @@ struct Scene {
 // its negative and nodata values count as no material.
 Scene load_scene(const SceneInputs& inputs);
 
+// load_scene in parts, for regions larger than memory (issue 19, item 4; docs/study.md,
+// "Tiles"). load_region reads the DEM whole, the materials and the release; add_ground_maps
+// reads lithology, vegetation and erodible material onto the scene's DEM grid; load_tile makes
+// the scene of one window of the region's DEM grid (GridSpec::window): its elevations cut from
+// the region's, its other maps read and aligned for the window alone, no release. Each cell holds
+// what load_scene gives it, so a tile's ground model agrees with the whole one on the window.
+Scene load_region(const SceneInputs& inputs);
+void add_ground_maps(Scene& scene);
+Scene load_tile(const Scene& region, const GridSpec& window);
+
 }  // namespace talus::gis
