@@ -37,7 +37,8 @@ def study_text(runs, dem):
     for name, size, period in BLOCKS:
         text += (f'\n[[rockfall]]\nname = "{name}"\nrelease = "auto"\nreturn_period = {period}\n'
                  f'[rockfall.run]\nruns = {runs}\n[rockfall.fast_bounce]\nmax_time = 900\n'
-                 f'[rockfall.rock]\nsize = "{size}"\n[rockfall.outputs]\nproject = "off"\n')
+                 f'[rockfall.rock]\nsize = "{size}"\n[rockfall.tiles]\nhalo = 2000\n'
+                 f'[rockfall.outputs]\nproject = "off"\n')
     return text
 
 
@@ -91,8 +92,8 @@ def main():
         ranks, threads = (int(n) for n in workers.split("x"))
         if tiling and tiling[0] == "t":
             # Forced tile sizes are a scenario key: [rockfall.tiles] size.
-            study.write_text(study_text(args.runs, dem).replace("[rockfall.outputs]",
-                                                                f"[rockfall.tiles]\nsize = {tiling[1:]}\n[rockfall.outputs]"))
+            study.write_text(study_text(args.runs, dem).replace("[rockfall.tiles]\n",
+                                                                f"[rockfall.tiles]\nsize = {tiling[1:]}\n"))
         else:
             study.write_text(study_text(args.runs, dem))
         extra = ["--memory", tiling[1:]] if tiling and tiling[0] == "m" else []

@@ -73,25 +73,31 @@ std::optional<RockfallResult> simulate_tiles(const gis::Scene& region, const Til
   const std::vector<std::vector<std::uint8_t>> messages = ranks.gather(message.take());
   if (!ranks.root()) return std::nullopt;
 
-  // Every rank's tiles, onto the region's grid, in (tile, rank) order, then joined.
-  std::vector<std::pair<std::uint64_t, RockfallResult>> shares;
+  // Every rank's tiles, each onto the region's grid and joined into the rest at once, so that
+  // the statistics of one tile at a time are held beside the whole's.
+  std::optional<RockfallResult> whole;
   for (const auto& bytes : messages) {
     ByteReader in(bytes);
     for (std::uint64_t t = in.get<std::uint64_t>(); t < plan.tiles.size(); t = in.get<std::uint64_t>()) {
       std::vector<std::uint8_t> encoded;
       in.get_vector(encoded);
-      shares.emplace_back(t, decode_share(encoded, region.dem.elevation, plan.tiles[t].window));
+      RockfallResult tile = decode_share(encoded, region.dem.elevation, plan.tiles[t].window);
+      if (!whole) {
+        whole.emplace(std::move(tile));
+        continue;
+      }
+      std::vector<RockfallResult> pair;
+      pair.push_back(std::move(*whole));
+      pair.push_back(std::move(tile));
+      whole.emplace(join_shares(std::move(pair), settings));
     }
   }
-  std::stable_sort(shares.begin(), shares.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<RockfallResult> results;
-  for (auto& [t, result] : shares) results.push_back(std::move(result));
-  if (results.empty()) {  // no source at all: what an untiled run of none gives
-    results.push_back(RockfallResult{RockfallStatistics(region.dem.elevation), {},
-                                     std::vector<std::uint64_t>(kStopReasonCount, 0), {}, 0, 1, 0,
-                                     std::vector<std::uint64_t>(sources.size(), 0), std::nullopt, std::nullopt});
+  if (!whole) {  // no source at all: what an untiled run of none gives
+    whole.emplace(RockfallResult{RockfallStatistics(region.dem.elevation), {},
+                                 std::vector<std::uint64_t>(kStopReasonCount, 0), {}, 0, 1, 0,
+                                 std::vector<std::uint64_t>(sources.size(), 0), std::nullopt, std::nullopt});
   }
-  return join_shares(std::move(results), settings);
+  return whole;
 }
 
 }  // namespace talus::cli

@@ -40,7 +40,7 @@ struct TilePlan {
 // buffers while they are read), and of the region held whole (the DEM's elevations, the release,
 // the statistics' per-cell indices and the layers written at the end).
 inline constexpr double kTileBytesPerCell = 200;
-inline constexpr double kRegionBytesPerCell = 120;
+inline constexpr double kRegionBytesPerCell = 160;
 // Bytes a run takes whatever its size (the program, GDAL, PROJ and the threads' stacks).
 inline constexpr double kBaseBytes = 80e6;
 
