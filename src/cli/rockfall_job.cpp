@@ -16,6 +16,7 @@
 #include "run_project.hpp"
 #include "rockfall_tiles.hpp"
 #include "tile_plan.hpp"
+#include "unit_parts.hpp"
 #include "truncated_trajectories.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/layer_writer.hpp"
@@ -139,16 +140,41 @@ RockfallScene read_rockfall_scene(RockfallOptions& o, RunChoices choices) {
   return {std::move(choices), std::move(scene), std::move(plan), std::move(ground), std::move(sources)};
 }
 
+// What the units of work committed to o.unit_parts depend on: the scenario's record and how the
+// run is cut into units.
+std::string unit_parts_key(const RockfallOptions& o, const TilePlan& plan) {
+  nlohmann::ordered_json key = nlohmann::ordered_json::parse(o.unit_key);
+  key["units"] = {{"tiles", plan.tiles.size()},
+                  {"tile_cells", std::max(plan.tiles.front().core.width, plan.tiles.front().core.height)},
+                  {"halo_cells", plan.halo_cells},
+                  {"sources_per_unit", kSourcesPerUnit}};
+  return key.dump(1);
+}
+
 // This rank's share of the trajectories; on rank 0, every rank's shares joined (rockfall_shares.hpp).
 std::optional<RockfallResult> simulate_shares(const RockfallScene& r, const TrajectoryModel& model, RockfallOptions& o,
-                                              Progress& progress, const ProcessRanks& ranks, TileLines& tile_lines) {
+                                              const JobOutput& output, const ProcessRanks& ranks, TileLines& tile_lines) {
   o.settings.share = {static_cast<std::uint32_t>(ranks.rank()), static_cast<std::uint32_t>(ranks.size()), nullptr};
   const TrajectoryRunner run = [&](const GroundModel& ground, const RockfallSettings& settings, Progress& part) {
     return run_trajectories(ground, r.sources, model, settings, o.command_line, part);
   };
-  if (r.plan.tiled()) return simulate_tiles(r.scene, r.plan, r.sources, o.settings, run, progress, ranks, tile_lines);
+  if (r.plan.tiled() || !o.unit_parts.empty()) {
+    std::optional<UnitParts> parts;
+    if (!o.unit_parts.empty()) {
+      parts.emplace(o.unit_parts, ranks.rank(), ranks.size());
+      together(ranks, [&] {
+        if (ranks.root()) parts->prepare(unit_parts_key(o, r.plan));
+      });
+    }
+    std::size_t resumed = 0;
+    std::optional<RockfallResult> joined = simulate_units(r.scene, r.ground ? &*r.ground : nullptr, r.plan, r.sources,
+                                                          o.settings, run, output.progress, ranks,
+                                                          parts ? &*parts : nullptr, tile_lines, resumed);
+    if (resumed > 0) output.say(printf_text("resumed: %zu units of work were committed by an earlier run", resumed));
+    return joined;
+  }
   std::optional<RockfallResult> share;
-  together(ranks, [&] { share = run(*r.ground, o.settings, progress); });
+  together(ranks, [&] { share = run(*r.ground, o.settings, output.progress); });
   if (ranks.size() == 1) return share;
   const std::vector<std::vector<std::uint8_t>> messages = ranks.gather(encode_share(*share));
   if (!ranks.root()) return std::nullopt;
@@ -214,7 +240,7 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   }
   const std::unique_ptr<TrajectoryModel> model = trajectory_model(o);
   TileLines tile_lines;
-  const std::optional<RockfallResult> joined = simulate_shares(*read, *model, o, output.progress, ranks, tile_lines);
+  const std::optional<RockfallResult> joined = simulate_shares(*read, *model, o, output, ranks, tile_lines);
   if (!ranks.root()) return;  // rank 0 writes
   const RockfallResult& result = *joined;
   const double simulate_seconds = seconds_since(simulate_start);

@@ -37,6 +37,10 @@ struct RockfallOptions {
   FullModelParameters full;
   double fracture_strength = FullModelParameters{}.fracture_strength / 1000.0;  // kN, into full.fracture_strength (N)
   TileChoice tiles;            // [tiles], --memory, --halo, --tile-size (tile_plan.hpp)
+  // A study's resume within the scenario (unit_parts.hpp): the folder its units of work are
+  // committed to, and what their results depend on; empty: not committed.
+  std::filesystem::path unit_parts;
+  std::string unit_key;
   std::vector<std::string> command_line;
 };
 

@@ -1,4 +1,4 @@
-// Rock fall tile by tile (rockfall_tiles.hpp; issue 19, item 4).
+// Rock fall in units of work: tiles, and chunks of sources (rockfall_tiles.hpp; issue 19, items 4 and 5).
 #include "rockfall_tiles.hpp"
 
 #include <algorithm>
@@ -17,7 +17,7 @@ class TileProgress final : public Progress {
   TileProgress(Progress& whole, double before, double share, std::string place)
       : whole_(whole), before_(before), share_(share), place_(std::move(place)) {}
   void report(double fraction_done, const std::string& phase) override {
-    whole_.report(before_ + share_ * fraction_done, phase + ", " + place_);
+    whole_.report(before_ + share_ * fraction_done, place_.empty() ? phase : phase + ", " + place_);
   }
   bool cancelled() const override { return whole_.cancelled(); }
 
@@ -33,40 +33,67 @@ void keep_once(std::vector<std::string>& kept, std::set<std::string>& seen, cons
   }
 }
 
+// The tile's sources in chunks of `size` (by source index); all of them in one when size is 0.
+std::vector<std::vector<bool>> chunks_of(const std::vector<bool>& tile, std::size_t size) {
+  std::vector<std::vector<bool>> chunks;
+  std::size_t in_chunk = 0;
+  for (std::size_t s = 0; s < tile.size(); ++s) {
+    if (!tile[s]) continue;
+    if (chunks.empty() || (size != 0 && in_chunk == size)) {
+      chunks.emplace_back(tile.size(), false);
+      in_chunk = 0;
+    }
+    chunks.back()[s] = true;
+    ++in_chunk;
+  }
+  return chunks;
+}
+
 }  // namespace
 
-std::optional<RockfallResult> simulate_tiles(const gis::Scene& region, const TilePlan& plan,
-                                             const std::vector<ReleaseSource>& sources, const RockfallSettings& settings,
-                                             const TrajectoryRunner& run, Progress& progress, const ProcessRanks& ranks,
-                                             TileLines& lines) {
+std::optional<RockfallResult> simulate_units(const gis::Scene& region, const GroundModel* whole_ground,
+                                             const TilePlan& plan, const std::vector<ReleaseSource>& sources,
+                                             const RockfallSettings& settings, const TrajectoryRunner& run,
+                                             Progress& progress, const ProcessRanks& ranks, const UnitParts* parts,
+                                             TileLines& lines, std::size_t& resumed) {
   const GridSpec& grid = region.dem.elevation.spec();
   const std::vector<std::vector<bool>> selected = sources_by_tile(plan, grid, sources);
-  std::vector<std::size_t> counts(plan.tiles.size(), 0);
-  for (std::size_t t = 0; t < plan.tiles.size(); ++t) counts[t] = static_cast<std::size_t>(std::count(selected[t].begin(), selected[t].end(), true));
   const double total = static_cast<double>(std::max<std::size_t>(1, sources.size()));
 
-  // This rank's share of each tile with sources: (tile, encoded result).
+  // This rank's share of each unit with sources: (tile, encoded result).
   ByteWriter message;
   std::set<std::string> seen_notes, seen_problems;
   together(ranks, [&] {
     double before = 0;
     for (std::size_t t = 0; t < plan.tiles.size(); ++t) {
-      if (counts[t] == 0) continue;
       const Tile& tile = plan.tiles[t];
-      const gis::Scene scene = gis::load_tile(region, tile.window);
-      keep_once(lines.notes, seen_notes, scene.notes);
-      keep_once(lines.problems, seen_problems, scene.problems);
-      const GroundModel ground = scene.ground_model();
-      RockfallSettings unit = settings;
-      unit.share.unit = std::make_shared<const std::vector<bool>>(selected[t]);
-      unit.tile = tile.halo_edge;
-      const double share = static_cast<double>(counts[t]) / total;
-      TileProgress part(progress, before, share,
-                        "tile " + std::to_string(t + 1) + " of " + std::to_string(plan.tiles.size()));
-      const RockfallResult result = run(ground, unit, part);
-      message.put<std::uint64_t>(t);
-      message.put_vector(encode_share(result));
-      before += share;
+      const std::vector<std::vector<bool>> chunks = chunks_of(selected[t], parts ? kSourcesPerUnit : 0);
+      std::optional<GroundModel> tile_ground;  // built when a unit of the tile is to be run
+      for (std::size_t c = 0; c < chunks.size(); ++c) {
+        const double share = static_cast<double>(std::count(chunks[c].begin(), chunks[c].end(), true)) / total;
+        std::optional<std::vector<std::uint8_t>> bytes = parts ? parts->load(t, c) : std::nullopt;
+        if (bytes) {
+          ++resumed;
+        } else {
+          if (!whole_ground && !tile_ground) {
+            const gis::Scene scene = gis::load_tile(region, tile.window);
+            keep_once(lines.notes, seen_notes, scene.notes);
+            keep_once(lines.problems, seen_problems, scene.problems);
+            tile_ground.emplace(scene.ground_model());
+          }
+          RockfallSettings unit = settings;
+          unit.share.unit = std::make_shared<const std::vector<bool>>(chunks[c]);
+          if (plan.tiled()) unit.tile = tile.halo_edge;
+          std::string place = plan.tiled() ? "tile " + std::to_string(t + 1) + " of " + std::to_string(plan.tiles.size()) : "";
+          if (chunks.size() > 1) place += (place.empty() ? "" : ", ") + std::string("sources ") + std::to_string(c + 1) + " of " + std::to_string(chunks.size());
+          TileProgress part(progress, before, share, place);
+          bytes = encode_share(run(whole_ground ? *whole_ground : *tile_ground, unit, part));
+          if (parts) parts->commit(t, c, *bytes);
+        }
+        message.put<std::uint64_t>(t);
+        message.put_vector(*bytes);
+        before += share;
+      }
     }
     message.put<std::uint64_t>(plan.tiles.size());  // the end of the message
   });

@@ -142,13 +142,17 @@ CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const
                       checksums)};
 }
 
-// A rock fall's sources are shared among the ranks (rockfall_job.hpp); a mud flow runs on one rank.
+// A rock fall's sources are shared among the ranks (rockfall_job.hpp), its units of work
+// committed under OUT/.units/NAME.parts until its set is (study_units.hpp); a mud flow runs on
+// one rank.
 void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices& choices, const JobOutput& output,
-                  const ProcessRanks& ranks) {
+                  const ProcessRanks& ranks, const nlohmann::ordered_json& unit) {
   if (s.process == StudyProcess::rockfall) {
     RockfallScenarioRun run;
     set_up(run, study, s, choices);
     set_memory(run, choices);
+    run.options.unit_parts = unit_parts_folder(choices.out, s);
+    run.options.unit_key = unit.dump();
     rockfall_job(run.options, run.table, output, ranks);
     return;
   }
@@ -335,11 +339,11 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
       output.say("  already done: its layers were computed from the same parameters and inputs (resumed)");
     } else if (s.process == StudyProcess::rockfall) {
       mudflows.meet();
-      run_scenario(study, s, choices, indented, ranks);
+      run_scenario(study, s, choices, indented, ranks, units[k]);
       if (ranks.root()) mark_unit_done(choices.out, s, units[k]);
     } else if (const int owner = mudflows.next_rank(); owner == ranks.rank()) {
       mudflows.run_own([&] {
-        run_scenario(study, s, choices, indented, ranks);
+        run_scenario(study, s, choices, indented, ranks, units[k]);
         mark_unit_done(choices.out, s, units[k]);
       });
     } else {

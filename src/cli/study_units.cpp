@@ -58,6 +58,12 @@ void mark_unit_done(const std::filesystem::path& out, const StudyScenario& s, co
     if (!file) throw std::runtime_error("cannot write " + partial.string());
   }
   std::filesystem::rename(partial, path);
+  // The scenario is whole: its units of work are not needed any more.
+  std::filesystem::remove_all(unit_parts_folder(out, s));
+}
+
+std::filesystem::path unit_parts_folder(const std::filesystem::path& out, const StudyScenario& s) {
+  return out / ".units" / (s.name + ".parts");
 }
 
 }  // namespace talus::cli

@@ -1,6 +1,6 @@
-// Resuming a study (issue 19, item 5; docs/study.md, "Resume"): each scenario is a unit of work,
-// committed whole by its layer set; once committed, DIR/.units/NAME.json records what it was
-// computed from. A rerun of the same study skips each unit whose record matches what it would
+// Resuming a study (issue 19, item 5; docs/study.md, "Resume"): each scenario is committed whole
+// by its layer set; once committed, DIR/.units/NAME.json records what it was computed from (a
+// rock fall's smaller units of work are committed inside it as they finish, unit_parts.hpp). A rerun of the same study skips each unit whose record matches what it would
 // compute now, and the layers stay bit for bit those of an uninterrupted run, because a scenario's
 // layers depend only on what the record holds.
 #pragma once
@@ -28,7 +28,12 @@ nlohmann::ordered_json unit_record(const StudyScenario& s, nlohmann::ordered_jso
 // True when OUT/scenarios/NAME holds a committed set and OUT/.units/NAME.json equals `record`.
 bool unit_done(const std::filesystem::path& out, const StudyScenario& s, const nlohmann::ordered_json& record);
 
-// Writes OUT/.units/NAME.json (under a temporary name, renamed) after the scenario's set is committed.
+// Writes OUT/.units/NAME.json (under a temporary name, renamed) after the scenario's set is
+// committed, and removes the scenario's units of work.
 void mark_unit_done(const std::filesystem::path& out, const StudyScenario& s, const nlohmann::ordered_json& record);
+
+// Within a rock-fall scenario, its units of work (a tile's chunk of sources, unit_parts.hpp) are
+// committed here as they finish, so that a killed study resumes inside the scenario too.
+std::filesystem::path unit_parts_folder(const std::filesystem::path& out, const StudyScenario& s);
 
 }  // namespace talus::cli

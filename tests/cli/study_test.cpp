@@ -242,6 +242,53 @@ TEST(Study, AStudyKilledAtRandomMomentsResumesToTheSameLayers) {
   EXPECT_NE(again.out.find("already done"), std::string::npos) << again.out;
 }
 
+// issue 19, items 4 and 5: a rock fall in tiles commits each tile's units of work as they finish;
+// killed at random moments within the scenario and run again, it takes the committed units as
+// they are, computes the rest, and gives the layers of an uninterrupted run, bit for bit; the
+// finished scenario keeps no units.
+TEST(Study, ARockFallKilledWithinItsTilesResumesFromItsCommittedUnitsToTheSameLayers) {
+  const fs::path folder = test::fresh_folder("study_resume_units");
+  const fs::path sample = test::source_dir() / "sample_dem";
+  const fs::path study = write_study(
+      folder, "[inputs]\ndem = \"" + (sample / "dem.tif").string() + "\"\nlithology = \"" +
+                  (sample / "lithology.tif").string() + "\"\n[[rockfall]]\nname = \"blocks\"\nrelease = \"" +
+                  (sample / "rockfall_release.gpkg").string() +
+                  "\"\nreturn_period = 30\n[rockfall.run]\nruns = 60\nseed = 7\n"
+                  "[rockfall.tiles]\nsize = 30\nhalo = 1500\n[rockfall.outputs]\nproject = \"off\"\n");
+  ASSERT_EQ(test::run_talus({"study", study.string(), "--out", "whole", "--project", "off"}, folder).exit_code, 0);
+
+  const fs::path parts = folder / "resumed/.units/blocks.parts";
+  const auto committed_units = [&] {
+    std::size_t units = 0;
+    if (fs::exists(parts)) {
+      for (const auto& entry : fs::directory_iterator(parts)) units += entry.path().extension() == ".bin" ? 1 : 0;
+    }
+    return units;
+  };
+  const auto run_until_killed = [&](double seconds) {
+    const std::string command = "cd '" + folder.string() + "' && timeout -s KILL " + std::to_string(seconds) + " '" +
+                                test::talus_exe().string() + "' study '" + study.string() +
+                                "' --out resumed --project off >/dev/null 2>&1";
+    std::system(command.c_str());
+  };
+  std::mt19937 random(23);  // fixed: the same kill moments on every run of the test
+  std::uniform_real_distribution<double> moment(0.05, 1.0);
+  run_until_killed(moment(random));
+  run_until_killed(moment(random));
+  // Kills later and later, until one came after some units were committed.
+  for (double seconds = 0.5; seconds < 20.0 && committed_units() == 0; seconds += 0.3) run_until_killed(seconds);
+  ASSERT_GT(committed_units(), 0u);
+  ASSERT_FALSE(fs::exists(folder / "resumed/.units/blocks.json"));
+  const test::ProgramResult last = test::run_talus({"study", study.string(), "--out", "resumed", "--project", "off"}, folder);
+  ASSERT_EQ(last.exit_code, 0) << last.out << last.err;
+  EXPECT_NE(last.out.find("resumed: "), std::string::npos) << last.out;
+  for (const char* layer : {"scenarios/blocks/reach_probability.tif", "scenarios/blocks/energy_p95.tif",
+                            "scenarios/blocks/passages.tif", "scenarios/blocks/source_count.tif", "hazard/hazard.tif"}) {
+    EXPECT_EQ(band(folder / "resumed" / layer), band(folder / "whole" / layer)) << layer;
+  }
+  EXPECT_FALSE(fs::exists(parts));
+}
+
 // issue 19, item 1: release = "auto" finds the sources from the slope. On the sample scene,
 // lithology class 6 (bedrock) was made as the cells of Horn's slope >= 45 degrees
 // (sample_dem/README.md), so sources steeper than 45 degrees in class 6 are those cells; without
