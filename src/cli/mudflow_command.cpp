@@ -28,7 +28,8 @@ constexpr Flag kFlags[] = {{"run", "duration", "--duration"},       {"run", "see
                            {"rheology", "rheology", "--rheology"},  {"outputs", "snapshot_interval", "--snapshots"},
                            {"mud", "release_depth", "--depth"},     {"mud", "depth_field", "--depth-field"},
                            {"outputs", "snapshot_start", "--start-time"}, {"outputs", "intensity", "--intensity"},
-                           {"outputs", "project", "--project"}};
+                           {"outputs", "project", "--project"},     {"tiles", "memory", "--memory"},
+                           {"tiles", "halo", "--halo"}};
 
 }  // namespace
 
@@ -81,10 +82,13 @@ void add_mudflow_command(CLI::App& app, Action& action, const std::vector<std::s
                                     "Intensity classes of intensity.tif: foen-2016 (default), FILE.toml or none");
   auto* project = cmd->add_option("--project", o->project,
                                   "on (default): also write project.qgz, hillshade.tif and quicklook/*.png with QGIS; off");
+  auto* memory = cmd->add_option("--memory", o->tiles.memory,
+                                 "GB the run may use; a larger region runs the flow on a window (default: half of this machine's memory)");
+  auto* halo = cmd->add_option("--halo", o->tiles.halo, "m the flow's window reaches beyond its release (default 5000)");
   cmd->callback([o, table, &action, duration, material, size, adaptive, rheology, snapshots, seed, threads, depth,
-                 depth_field, start_time, intensity, project] {
+                 depth_field, start_time, intensity, project, memory, halo] {
     const CLI::Option* given[] = {duration, seed,      threads,     material,    size,       adaptive,  rheology,
-                                  snapshots, depth,    depth_field, start_time, intensity, project};
+                                  snapshots, depth,    depth_field, start_time, intensity, project,   memory, halo};
     static_assert(std::size(kFlags) == std::size(given));
     for (std::size_t k = 0; k < std::size(kFlags); ++k) {
       if (given[k]->count() > 0) table->pin(kFlags[k].section, kFlags[k].name, kFlags[k].option);

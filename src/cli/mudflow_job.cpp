@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "intensity_layer.hpp"
 #include "mudflow_layers.hpp"
+#include "mudflow_window.hpp"
 #include "run_project.hpp"
 #include "unfinished_flow.hpp"
 #include "talus/core/errors.hpp"
@@ -66,7 +68,7 @@ nlohmann::ordered_json history_columns(const std::vector<MudflowHistoryPoint>& h
 
 // run.json: inputs with checksums, resolved parameters, counts, how the run ended, volumes.
 void record_run(gis::RunRecord& record, const MudflowOptions& o, const gis::Scene& scene, const ParameterTable& table,
-                const MudflowResult& result) {
+                const MudflowResult& result, const std::vector<std::string>& halo_problems) {
   record.add_input("dem", o.inputs.dem, &scene.dem.elevation.spec());
   if (!o.inputs.lithology.empty()) record.add_input("lithology", o.inputs.lithology, nullptr);
   if (!o.inputs.vegetation.empty()) record.add_input("vegetation", o.inputs.vegetation, nullptr);
@@ -97,12 +99,14 @@ void record_run(gis::RunRecord& record, const MudflowOptions& o, const gis::Scen
                             {"entrained", result.entrained_volume},
                             {"deposited", result.deposited_volume},
                             {"outflow", result.outflow_volume},
+                            {"halo_outflow", result.halo_outflow_volume},
                             {"balance_relative", volume_balance(result)}});
   record.set("history", history_columns(result.history));
   record.set("notes", scene.notes);
   std::vector<std::string> problems = scene.problems;
   const std::vector<std::string> unfinished = unfinished_flow_problems(result, o.settings);
   problems.insert(problems.end(), unfinished.begin(), unfinished.end());
+  problems.insert(problems.end(), halo_problems.begin(), halo_problems.end());
   record.set("problems", problems);
 }
 
@@ -116,9 +120,11 @@ void say_summary(const MudflowResult& result, double simulate_seconds, const std
               static_cast<double>(result.particle_steps) / std::max(simulate_seconds, 1e-9), result.threads,
               result.threads == 1 ? "" : "s"));
   const double balance_percent = std::round(1e4 * volume_balance(result)) / 100.0 + 0.0;  // + 0.0: no "-0.00"
-  output.say(printf_text("Volumes: released %.0f m3, entrained %.0f m3, deposited %.0f m3, left the DEM %.0f m3 (balance %+.2f %%)",
+  const std::string window_part =
+      result.halo_outflow_volume > 0.0 ? printf_text(" (%.0f m3 across its window's halo)", result.halo_outflow_volume) : "";
+  output.say(printf_text("Volumes: released %.0f m3, entrained %.0f m3, deposited %.0f m3, left the DEM %.0f m3%s (balance %+.2f %%)",
               result.released_volume, result.entrained_volume, result.deposited_volume, result.outflow_volume,
-              balance_percent));
+              window_part.c_str(), balance_percent));
   output.say("Layers written to " + out.string() + " (open the .tif files in QGIS: each has its style beside it)");
 }
 
@@ -133,19 +139,42 @@ void mudflow_job(MudflowOptions& o, ParameterTable& table, bool adaptive_given, 
   gis::RunRecord record;
   record.set_command_line(o.command_line);
   o.inputs.release_needs_depth = true;
-  const gis::Scene scene = gis::load_scene(o.inputs);
-  const GroundModel ground = scene.ground_model();
+  gis::Scene scene = gis::load_region(o.inputs);
+  // Margin around the halo: ten of the coarsest particles and the curvature span.
+  const double margin = 10.0 * o.settings.particle_size * std::ldexp(1.0, o.settings.coarse_levels) +
+                        o.settings.curvature_span;
+  const MudflowWindow window = plan_mudflow_window(scene, o.tiles, margin);
+  std::optional<gis::Scene> tile;
+  std::optional<ReleaseSet> window_release;
+  if (window.window) {
+    tile.emplace(gis::load_tile(scene, *window.window));
+    scene.notes.insert(scene.notes.end(), tile->notes.begin(), tile->notes.end());
+    scene.problems.insert(scene.problems.end(), tile->problems.begin(), tile->problems.end());
+    window_release.emplace(scene.release->window(*window.window));
+    o.settings.window_edge = window.halo_edge;
+  } else {
+    gis::add_ground_maps(scene);
+  }
+  const gis::Scene& ground_scene = tile ? *tile : scene;
+  const GroundModel ground = ground_scene.ground_model();
   const double read_seconds = seconds_since(start);
   for (const auto& note : scene.notes) output.say("note: " + note);
   for (const auto& problem : scene.problems) output.say("problem: " + problem);
+  if (window.window) {
+    output.say(printf_text("Window: %d x %d cells around the release with a halo of %g m, for --memory %.3g GB",
+                           window.window->width, window.window->height, window.halo, window.memory_bytes / 1e9));
+  }
   output.say(printf_text("Mud flow from %zu release cells and %zu points (%s: %s, particle size %g m, adaptive %s) ...",
               scene.release->cell_count(), scene.release->points.size(), o.material.c_str(), o.rheology.c_str(),
               o.settings.particle_size, o.settings.adaptive ? "on" : "off"));
 
   const auto simulate_start = std::chrono::steady_clock::now();
-  const Grid<float>* erodible = scene.erodible ? &*scene.erodible : nullptr;
-  const MudflowResult result = run_mudflow(ground, *scene.release, erodible, o.settings, &output.progress);
+  const Grid<float>* erodible = ground_scene.erodible ? &*ground_scene.erodible : nullptr;
+  MudflowResult result = run_mudflow(ground, window_release ? *window_release : *scene.release, erodible, o.settings,
+                                     &output.progress);
+  if (window.window) result.layers = whole_region_layers(result.layers, scene.dem.elevation);
   const double simulate_seconds = seconds_since(simulate_start);
+  const std::vector<std::string> halo_problems = halo_outflow_problems(result, window.halo);
 
   const auto write_start = std::chrono::steady_clock::now();
   const nlohmann::json intensity_entry = write_layers_with_intensity(writer, mudflow_hazard_layers(result.layers), intensity);
@@ -153,7 +182,8 @@ void mudflow_job(MudflowOptions& o, ParameterTable& table, bool adaptive_given, 
     gis::add_particle_snapshots(writer, result.snapshots, o.settings.snapshot_interval, ground.spec().crs_wkt,
                                 o.snapshot_start_seconds);
   }
-  record_run(record, o, scene, table, result);
+  record_run(record, o, scene, table, result, halo_problems);
+  record.set("tiles", window_record(window));
   if (intensity) record.set("intensity", intensity_entry);
   record.add_timing("read_inputs", read_seconds);
   record.add_timing("simulate", simulate_seconds);
@@ -165,6 +195,7 @@ void mudflow_job(MudflowOptions& o, ParameterTable& table, bool adaptive_given, 
   if (intensity) output.say(intensity_summary(intensity_entry));
   say_summary(result, simulate_seconds, o.out, output);
   for (const auto& problem : unfinished_flow_problems(result, o.settings)) output.say("problem: " + problem);
+  for (const auto& problem : halo_problems) output.say("problem: " + problem);
   if (!project_line.empty()) output.say(project_line);
 }
 

@@ -158,6 +158,14 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
   table.add("outputs", "map_interval", "s", "flow depth, velocity and pressure maxima are sampled this often",
             &s.map_interval, Range{0.01, 3600, false, false});
   table.add("outputs", "snapshot_interval", "s", "> 0: particles.gpkg holds the particles this often", &s.snapshot_interval, Range{0.01, 86400, false, false, 0, "none"});
+  table.add("tiles", "memory", "GB",
+            "memory the run may use; a region whose ground model needs more runs the flow on a window around its "
+            "release (docs/study.md, Tiles)",
+            &o.tiles.memory, Range{0.1, 1e6, false, false, 0, "half of this machine's memory"});
+  table.add("tiles", "halo", "m", "how far beyond its release the flow's window reaches; mud that crosses its edge "
+            "leaves the flow there and is reported", &o.tiles.halo, Range{0, 1e6, false, false});
+  table.add("tiles", "size", "cells", "any size runs the flow on its window whatever the memory (for tests)",
+            &o.tiles.size, Range{16, 1e6, false, false, 0, "only when [tiles] memory asks for it"});
   table.add("outputs", "project", "",
             "on: also write project.qgz, hillshade.tif and quicklook/*.png with QGIS (python3-qgis); off: not", &o.project);
   table.add("outputs", "intensity", "",

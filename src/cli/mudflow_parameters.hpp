@@ -15,6 +15,7 @@
 #include "mudflow_materials.hpp"
 #include "parameter_table.hpp"
 #include "run_choices.hpp"
+#include "tile_plan.hpp"
 #include "talus/gis/particle_snapshot_writer.hpp"
 #include "talus/gis/scene.hpp"
 #include "talus/mudflow/mudflow_simulation.hpp"
@@ -36,6 +37,9 @@ struct MudflowOptions {
   std::string project = "on";  // --project on|off, [outputs] project
   std::string intensity = kDefaultIntensity;                // --intensity, [outputs] intensity
   MudflowSettings settings;
+  // [tiles], --memory, --halo (docs/study.md, "Tiles"): a region whose ground does not fit runs the
+  // flow on a window around its release; debris flows run further than rocks, so the halo is wider.
+  TileChoice tiles{0, 5000, 0};
   std::vector<std::string> command_line;
 };
 

@@ -29,7 +29,7 @@ void add_study_command(CLI::App& app, Action& action, const std::vector<std::str
   cmd->add_option("--out", o->choices.out, "Output folder: scenarios/NAME per scenario, study.json")->required();
   auto* threads = cmd->add_option("--threads", o->threads, "Threads of every scenario (default: its [run] threads, all cores)");
   auto* memory = cmd->add_option("--memory", o->memory,
-                                 "GB each rock-fall scenario may use; a larger region runs in tiles (docs/study.md, Tiles)");
+                                 "GB each scenario may use; a larger region runs in tiles (docs/study.md, Tiles)");
   cmd->add_option("--project", o->project,
                   "on (default): also write project.qgz, hillshade.tif and quicklook/hazard.png with QGIS; off");
   cmd->callback([o, &action, &ranks, threads, memory] {

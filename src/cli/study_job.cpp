@@ -89,8 +89,9 @@ void set_up(Run& run, const Study& study, const StudyScenario& s, const StudyCho
   }
 }
 
-// A rock-fall scenario's --memory (mud flows are not tiled, docs/study.md "Tiles").
-void set_memory(RockfallScenarioRun& run, const StudyChoices& choices) {
+// A scenario's --memory (docs/study.md, "Tiles").
+template <typename Run>
+void set_memory(Run& run, const StudyChoices& choices) {
   if (!choices.memory) return;
   run.options.tiles.memory = *choices.memory;
   run.table.pin("tiles", "memory", "--memory");
@@ -133,10 +134,12 @@ CheckedScenario check_scenario(const Study& study, const StudyScenario& s, const
   }
   MudflowScenarioRun run;
   set_up(run, study, s, choices);
+  set_memory(run, choices);
   run.options.inputs.erodible = s.erodible;
   resolve_mudflow_parameters(run.options, run.table, false);
   run.options.inputs.release_needs_depth = true;
-  gis::load_scene(run.options.inputs);
+  gis::Scene scene = gis::load_region(run.options.inputs);
+  if (!plan_tiles(scene.dem.elevation.spec(), run.options.tiles, 0).tiled()) gis::add_ground_maps(scene);
   return {run.options.intensity,
           unit_record(s, nlohmann::ordered_json::parse(run.table.values().dump()), input_files(run.options, s),
                       checksums)};
@@ -158,6 +161,7 @@ void run_scenario(const Study& study, const StudyScenario& s, const StudyChoices
   }
   MudflowScenarioRun run;
   set_up(run, study, s, choices);
+  set_memory(run, choices);
   run.options.inputs.erodible = s.erodible;
   mudflow_job(run.options, run.table, false, output);
 }

@@ -17,7 +17,7 @@ namespace talus::cli {
 struct StudyChoices {
   std::filesystem::path out;
   std::optional<int> threads;            // --threads: every scenario's [run] threads
-  std::optional<double> memory;          // --memory: every rock-fall scenario's [tiles] memory (GB)
+  std::optional<double> memory;          // --memory: every scenario's [tiles] memory (GB)
   bool project = true;                   // --project: project.qgz, hillshade.tif, quicklook/hazard.png
   std::vector<std::string> command_line;
 };

@@ -27,4 +27,14 @@ std::int64_t ReleaseSet::cell_feature(int col, int row) const {
   return feature_of_cell.size() == 0 ? kNoReleaseFeature : feature_of_cell.at(col, row);
 }
 
+ReleaseSet ReleaseSet::window(const GridSpec& spec) const {
+  ReleaseSet part;
+  part.depth = window_of(depth, spec);
+  part.points = points;
+  part.condition_sets = condition_sets;
+  if (condition_set_of_cell.size() > 0) part.condition_set_of_cell = window_of(condition_set_of_cell, spec);
+  if (feature_of_cell.size() > 0) part.feature_of_cell = window_of(feature_of_cell, spec);
+  return part;
+}
+
 }  // namespace talus

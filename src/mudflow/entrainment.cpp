@@ -38,15 +38,17 @@ double Entrainment::erode(ParticleSet& particles, const std::vector<char>& activ
     const double mass = particles.mass[i];
     const double sigma = particles.density[i];
     const double side = std::sqrt(sigma > 0.0 ? mass / sigma : cell_area);  // m
-    // The footprint in continuous cell coordinates (cell (col, row) spans [col, col + 1) x [row, row + 1)).
+    // The footprint in continuous cell coordinates of the whole grid (cell (col, row) spans
+    // [col, col + 1) x [row, row + 1)); on a tile's window (GridSpec) its cells are offset, so that
+    // the fractions are those of the whole grid, bit for bit.
     const double u = (particles.x[i] - spec.geotransform[0]) / spec.geotransform[1];
     const double v = (particles.y[i] - spec.geotransform[3]) / spec.geotransform[5];
     const double half_u = 0.5 * side / cell_width, half_v = 0.5 * side / cell_height;
     if (!(std::isfinite(u) && std::isfinite(v) && std::isfinite(half_u) && std::isfinite(half_v))) continue;
-    const int col_first = std::max(0, static_cast<int>(std::floor(u - half_u)));
-    const int col_last = std::min(spec.width - 1, static_cast<int>(std::floor(u + half_u)));
-    const int row_first = std::max(0, static_cast<int>(std::floor(v - half_v)));
-    const int row_last = std::min(spec.height - 1, static_cast<int>(std::floor(v + half_v)));
+    const int col_first = std::max(spec.col_offset, static_cast<int>(std::floor(u - half_u)));
+    const int col_last = std::min(spec.col_offset + spec.width - 1, static_cast<int>(std::floor(u + half_u)));
+    const int row_first = std::max(spec.row_offset, static_cast<int>(std::floor(v - half_v)));
+    const int row_last = std::min(spec.row_offset + spec.height - 1, static_cast<int>(std::floor(v + half_v)));
     double volume = 0;  // m3 from every cell
     for (int row = row_first; row <= row_last; ++row) {
       // Fractions of a cell's width and height (-) that the footprint covers.
@@ -54,7 +56,7 @@ double Entrainment::erode(ParticleSet& particles, const std::vector<char>& activ
       if (!(overlap_v > 0.0)) continue;
       for (int col = col_first; col <= col_last; ++col) {
         const double overlap_u = std::min(col + 1.0, u + half_u) - std::max(static_cast<double>(col), u - half_u);
-        const std::size_t cell = remaining_.index(col, row);
+        const std::size_t cell = remaining_.index(col - spec.col_offset, row - spec.row_offset);
         double& left = remaining_[cell];
         if (!(left > 0.0) || !(overlap_u > 0.0)) continue;
         const double cell_depth = std::min(demanded, left) * overlap_u * overlap_v;  // m over the whole cell

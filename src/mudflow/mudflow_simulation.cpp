@@ -231,7 +231,7 @@ class MudflowRun {
   std::vector<BasalResistance> resistance_;
   std::vector<std::uint8_t> wanted_;      // level the criteria ask for (with the guard's depth)
   std::vector<std::uint64_t> next_sync_;  // tick at which the particle's step ends
-  std::vector<char> outside_;             // left the valid area during this coarse step
+  std::vector<char> outside_;             // left the valid area during this coarse step (2: the window's halo)
   std::vector<double> outflow_mass_;      // kg: its mass when it left
   std::vector<double> outflow_energy_;    // J: the energy it took with it (flow_guard.hpp)
   // Level of each particle as the limiter sees it: its level while it flows, -1 (ignored) once it
@@ -251,6 +251,7 @@ class MudflowRun {
   std::size_t guard_retries_ = 0;
   std::size_t splits_ = 0, merges_ = 0;
   double outflow_volume_ = 0, entrained_volume_ = 0;
+  double halo_outflow_volume_ = 0;  // of outflow_volume_, across settings.window_edge
   double energy_source_ = 0;     // J brought by entrained mass minus taken by outflow, this coarse step
   double adaptivity_mass_change_ = 0, adaptivity_momentum_change_ = 0;
 };
@@ -463,12 +464,14 @@ void MudflowRun::entrain(const std::vector<std::uint32_t>& list) {
 }
 
 // Every flowing particle moves on the ground for `duration` (s); one that leaves the valid area
-// gives its mass (and its energy, for the guard) to the outflow and drops out of every sum
-// (mass 0) until the coarse step ends.
+// (or, on a window, crosses its halo's edge) gives its mass (and its energy, for the guard) to the
+// outflow and drops out of every sum (mass 0) until the coarse step ends.
 void MudflowRun::drift(const std::vector<std::uint32_t>& list, double duration) {
   for_each_listed(list, [&](std::size_t i) {
-    if (drift_on_ground(ground_, p_, i, duration, normals_)) return;
-    outside_[i] = 1;
+    const bool on_ground = drift_on_ground(ground_, p_, i, duration, normals_);
+    const bool in_window = !s_.window_edge || s_.window_edge->contains(p_.x[i], p_.y[i]);
+    if (on_ground && in_window) return;
+    outside_[i] = on_ground ? 2 : 1;
     limiter_level_[i] = -1;
     const double m = p_.mass[i];
     outflow_mass_[i] = m;
@@ -561,6 +564,7 @@ void MudflowRun::compact_and_sort() {
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (outside_[i] != 0) {
       outflow_volume_ += outflow_mass_[i] / s_.mud_density;
+      if (outside_[i] == 2) halo_outflow_volume_ += outflow_mass_[i] / s_.mud_density;
       energy_source_ -= outflow_energy_[i];
       continue;
     }
@@ -652,7 +656,8 @@ MudflowResult MudflowRun::run() {
     const ParticleSet saved = s_.guard ? p_ : ParticleSet{};
     const std::optional<Entrainment> saved_entrainment = s_.guard ? entrainment_ : std::nullopt;
     const Grid<float> saved_eroded = s_.guard ? eroded_ : Grid<float>{};
-    const double saved_entrained = entrained_volume_, saved_outflow = outflow_volume_;
+    const double saved_entrained = entrained_volume_, saved_outflow = outflow_volume_,
+                 saved_halo_outflow = halo_outflow_volume_;
     const FlowEnergy before = flow_energy(p_, normals_, s_.gravity, reference_elevation_);
     while (true) {
       energy_source_ = 0;
@@ -672,6 +677,7 @@ MudflowResult MudflowRun::run() {
       eroded_ = saved_eroded;
       entrained_volume_ = saved_entrained;
       outflow_volume_ = saved_outflow;
+      halo_outflow_volume_ = saved_halo_outflow;
       refresh();
     }
     loops_.record(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
@@ -727,6 +733,7 @@ MudflowResult MudflowRun::run() {
   result.simulated_time = t;
   result.entrained_volume = entrained_volume_;
   result.outflow_volume = outflow_volume_;
+  result.halo_outflow_volume = halo_outflow_volume_;
   result.final_particles = p_.size();
   result.splits = splits_;
   result.merges = merges_;

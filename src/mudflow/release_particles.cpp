@@ -141,8 +141,9 @@ ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& relea
         const std::size_t cell = dem.index(col, row);
         const double depth = static_cast<double>(release.depth[cell]);
         if (!(depth > 0.0) || !dem.is_valid(cell)) continue;
+        // Numbered on the whole grid, so that a window's particles are the whole run's (issue 19).
         release_column(ground, layout, lattice, spec.node_x(col), spec.node_y(row),
-                       column_mass(ground, layout, lattice, col, row, depth), cell, particles);
+                       column_mass(ground, layout, lattice, col, row, depth), spec.whole_index(cell), particles);
       }
     }
   }
@@ -154,7 +155,7 @@ ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& relea
     const int col = static_cast<int>(std::lround(col_at)), row = static_cast<int>(std::lround(row_at));
     if (!dem.is_valid(col, row)) continue;
     release_column(ground, layout, lattice, point.x, point.y, column_mass(ground, layout, lattice, col, row, point.depth),
-                   spec.cell_count() + k, particles);
+                   spec.whole().cell_count() + k, particles);
   }
   return particles;
 }

@@ -442,3 +442,42 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
 
 }  // namespace
 }  // namespace talus
+
+namespace talus {
+namespace {
+
+// Issue 19, item 4 (docs/study.md, "Tiles"): a region whose ground does not fit runs the flow on a
+// window around its release; with a halo the mud never crosses, the layers are the whole run's,
+// bit for bit, entrainment included; mud that crosses a narrow halo's edge is reported.
+TEST(MudflowWindow, AFlowOnItsWindowEqualsTheWholeRunBitForBit) {
+  const auto root = test::fresh_folder("mudflow_window");
+  test::RasterFixture bed = sample_grid_fixture();
+  bed.value = [](int, int) { return 0.5; };
+  test::write_raster(root / "erodible.tif", bed);
+  std::ofstream(root / "window.toml") << "[tiles]\nsize = 30\nhalo = 1500\n";
+  std::ofstream(root / "narrow.toml") << "[tiles]\nsize = 30\nhalo = 100\n";
+  const std::vector<std::string> erodible = {"--erodible", (root / "erodible.tif").string()};
+  const auto whole = test::run_talus(with(sample_arguments(root / "whole", "2"), erodible), root);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const auto windowed = test::run_talus(
+      with(with(sample_arguments(root / "window", "2"), erodible), {"--scenario", (root / "window.toml").string()}), root);
+  ASSERT_EQ(windowed.exit_code, 0) << windowed.err;
+  EXPECT_NE(windowed.out.find("Window: "), std::string::npos) << windowed.out;
+  const nlohmann::json record = read_json(root / "window" / "run.json");
+  EXPECT_TRUE(record["tiles"].is_object());
+  EXPECT_GT(record["volumes_m3"]["entrained"].get<double>(), 0.0);
+  EXPECT_EQ(record["volumes_m3"]["halo_outflow"].get<double>(), 0.0);
+  for (const std::string layer : {"flow_depth_max", "velocity_max", "pressure_max", "deposit_depth", "arrival_time",
+                                  "erosion_depth", "intensity"}) {
+    EXPECT_EQ(test::read_band(root / "window" / (layer + ".tif")), test::read_band(root / "whole" / (layer + ".tif")))
+        << layer;
+  }
+  const auto narrow = test::run_talus(with(sample_arguments(root / "narrow", "2"), {"--scenario", (root / "narrow.toml").string()}), root);
+  ASSERT_EQ(narrow.exit_code, 0) << narrow.err;
+  const nlohmann::json cut = read_json(root / "narrow" / "run.json");
+  EXPECT_GT(cut["volumes_m3"]["halo_outflow"].get<double>(), 0.0);
+  EXPECT_NE(narrow.out.find("crossed the edge of the flow's window ([tiles] halo = 100 m"), std::string::npos) << narrow.out;
+}
+
+}  // namespace
+}  // namespace talus

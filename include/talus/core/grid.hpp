@@ -49,6 +49,29 @@ class Grid {
   std::vector<T> values_;
 };
 
+// The values of a whole grid on one of its windows (GridSpec::window; issue 19, item 4).
+template <class T>
+Grid<T> window_of(const Grid<T>& whole, const GridSpec& window) {
+  if (!window.is_window() || !window.whole().same_grid(whole.spec())) throw GridMismatch("window_of: not a window of this grid");
+  GridSpec spec = window;
+  spec.nodata = whole.spec().nodata;
+  Grid<T> part(spec);
+  for (int row = 0; row < window.height; ++row) {
+    for (int col = 0; col < window.width; ++col) part.at(col, row) = whole.at(col + window.col_offset, row + window.row_offset);
+  }
+  return part;
+}
+
+// Writes a window's values into the whole grid it is a window of.
+template <class T>
+void paste_window(Grid<T>& whole, const Grid<T>& part) {
+  const GridSpec& window = part.spec();
+  if (!window.is_window() || !window.whole().same_grid(whole.spec())) throw GridMismatch("paste_window: not a window of this grid");
+  for (int row = 0; row < window.height; ++row) {
+    for (int col = 0; col < window.width; ++col) whole.at(col + window.col_offset, row + window.row_offset) = part.at(col, row);
+  }
+}
+
 // Applies f(a[i], b[i]) cell by cell into a grid on a's spec; refuses grids whose specs differ.
 template <class A, class B, class F>
 auto combine(const Grid<A>& a, const Grid<B>& b, F f, const std::string& what) {

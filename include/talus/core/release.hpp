@@ -40,6 +40,10 @@ struct ReleaseSet {
   std::size_t source_count() const { return cell_count() + points.size(); }
   ReleaseConditions cell_conditions(int col, int row) const;  // those of the cell's set (empty: none)
   std::int64_t cell_feature(int col, int row) const;          // the covering polygon's FID, or kNoReleaseFeature
+
+  // The release on a window of its grid (GridSpec::window; issue 19, item 4): the cells' grids cut
+  // to it, every point kept.
+  ReleaseSet window(const GridSpec& spec) const;
 };
 
 }  // namespace talus

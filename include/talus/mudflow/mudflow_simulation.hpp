@@ -16,6 +16,7 @@
 #include "talus/core/grid.hpp"
 #include "talus/core/progress.hpp"
 #include "talus/core/release.hpp"
+#include "talus/core/tile_bounds.hpp"
 #include "talus/ground/ground_model.hpp"
 #include "talus/mudflow/flow_maps.hpp"
 #include "talus/mudflow/release_particles.hpp"
@@ -28,6 +29,9 @@ struct MudflowSettings {
   double duration = 300;            // s: longest simulated time
   double stop_energy_fraction = 0.01;  // the run ends when kinetic energy falls below this x its peak (-)
   std::uint64_t seed = 1;           // jitter of the particles' initial places
+  // A flow on a window of the region (issue 19, item 4; docs/study.md, "Tiles"): the window's halo
+  // edge; a particle that crosses it leaves the flow as outflow, counted in halo_outflow_volume.
+  std::optional<TileBounds> window_edge;
   int threads = 0;                  // 0: all cores
   int parallel_particles = 256;     // per-particle loops over fewer particles run on one thread
   int parallel_check_period = 20;   // coarse steps between timed trials of one thread against all for the
@@ -99,7 +103,8 @@ struct MudflowResult {
   double released_volume = 0;       // m3
   double entrained_volume = 0;      // m3
   double deposited_volume = 0;      // m3: material on the DEM at the end
-  double outflow_volume = 0;        // m3: material that left the DEM's valid area
+  double outflow_volume = 0;        // m3: material that left the DEM's valid area (or the window's halo)
+  double halo_outflow_volume = 0;   // m3: of outflow_volume, what crossed settings.window_edge
   std::size_t initial_particles = 0, peak_particles = 0, final_particles = 0;
   std::size_t splits = 0, merges = 0;
   std::uint64_t particle_steps = 0; // force evaluations of one particle, summed

@@ -6,7 +6,6 @@
 // exactly, so the layers are bit-identical for any thread count.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -16,6 +15,7 @@
 #include "talus/core/errors.hpp"
 #include "talus/core/progress.hpp"
 #include "talus/core/release.hpp"
+#include "talus/core/tile_bounds.hpp"
 #include "talus/ground/ground_model.hpp"
 #include "talus/rockfall/envelope_convergence.hpp"
 #include "talus/rockfall/rock.hpp"
@@ -54,13 +54,7 @@ struct SourceShare {
   }
 };
 
-// Where a tile's trajectories must stop (issue 19, item 4): the edge of its halo, beyond which
-// the tile's ground is not the whole DEM's. Infinite on the sides where the tile reaches the
-// DEM's own edge. A trajectory with a sample outside stops there (StopReason::tile_edge).
-struct TileBounds {
-  double x_min = -HUGE_VAL, x_max = HUGE_VAL, y_min = -HUGE_VAL, y_max = HUGE_VAL;  // m
-  bool contains(double x, double y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
-};
+
 
 struct RockfallSettings {
   Rock rock;                            // the nominal rock
@@ -77,7 +71,8 @@ struct RockfallSettings {
   // simulates that one run of each source, without batches or a convergence test.
   std::optional<std::uint64_t> only_source, only_run;
   SourceShare share;                    // the whole run unless split among MPI ranks or tiles
-  std::optional<TileBounds> tile;       // a tile's run: its halo's edge
+  std::optional<TileBounds> tile;       // a tile's run: its halo's edge; a trajectory with a
+                                        // sample beyond it stops there (StopReason::tile_edge)
 };
 
 // A trajectory that failed numerically (NumericalFailure), with the source and run (0-based)

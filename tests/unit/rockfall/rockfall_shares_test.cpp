@@ -121,16 +121,6 @@ TEST_F(RockfallShares, AShareSimulatesOnlyItsBlocksOfSources) {
   }
 }
 
-// A grid's values on a window of it (GridSpec::window).
-template <class T>
-Grid<T> cut(const Grid<T>& whole, const GridSpec& window) {
-  Grid<T> part(window);
-  for (int row = 0; row < window.height; ++row) {
-    for (int col = 0; col < window.width; ++col) part.at(col, row) = whole.at(col + window.col_offset, row + window.row_offset);
-  }
-  return part;
-}
-
 // Issue 19, item 4: two tiles, the sources of rows 0-14 and of rows 15-29, each run on its window
 // of the ground with a halo of 5 rows, decoded onto the whole grid and joined, give the whole
 // run's result bit for bit (the rocks run down the slope, along x, and stay within the halo);
@@ -141,7 +131,7 @@ TEST_F(RockfallShares, TilesOnTheirWindowsJoinToTheWholeRun) {
     const int r0 = std::max(0, first_row - halo_rows - margin_rows);
     const int r1 = std::min(grid.height, first_row + rows + halo_rows + margin_rows);
     const GridSpec window = grid.window(0, r0, grid.width, r1 - r0);
-    const GroundModel tile_ground(cut(ground_.elevation_grid(), window), cut(ground_.material_grid(), window));
+    const GroundModel tile_ground(window_of(ground_.elevation_grid(), window), window_of(ground_.material_grid(), window));
     RockfallSettings settings = settings_;
     settings.auto_runs = automatic;
     auto in_tile = std::make_shared<std::vector<bool>>(sources_.size());
