@@ -58,10 +58,12 @@ MudflowWindow plan_mudflow_window(const gis::Scene& region, const TileChoice& ch
   result.window = grid.window(c0, r0, c1 - c0, r1 - r0);
   result.window_bytes = static_cast<double>(result.window->cell_count()) * kTileBytesPerCell;
   if (kBaseBytes + plan.region_bytes + result.window_bytes > plan.memory_bytes && choice.size == 0) {
+    std::ostringstream halo_text;  // the halo as given, the sizes to 3 digits
+    halo_text << choice.halo;
     std::ostringstream message;
     message.precision(3);
     message << "--memory " << plan.memory_bytes / 1e9 << " GB: the mud flow's window (its release and a halo of "
-            << choice.halo << " m, " << result.window->width << " x " << result.window->height << " cells) needs about "
+            << halo_text.str() << " m, " << result.window->width << " x " << result.window->height << " cells) needs about "
             << (kBaseBytes + plan.region_bytes + result.window_bytes) / 1e9 << " GB; give more memory or a smaller --halo";
     throw InputError(message.str());
   }

@@ -45,6 +45,14 @@ std::string sample_study(const std::string& extra_rockfall_key = "", const std::
          "[mudflow.outputs]\nproject = \"off\"\n";
 }
 
+// `talus study STUDY --out resumed` in `folder`, killed with SIGKILL after `seconds` (if still running).
+void study_until_killed(const fs::path& folder, const fs::path& study, double seconds) {
+  const std::string command = "cd '" + folder.string() + "' && timeout -s KILL " + std::to_string(seconds) + " '" +
+                              test::talus_exe().string() + "' study '" + study.string() +
+                              "' --out resumed --project off >/dev/null 2>&1";
+  std::system(command.c_str());
+}
+
 fs::path write_study(const fs::path& folder, const std::string& text) {
   const fs::path file = folder / "study.toml";
   std::ofstream(file) << text;
@@ -212,12 +220,7 @@ TEST(Study, AStudyKilledAtRandomMomentsResumesToTheSameLayers) {
   const fs::path study = write_study(folder, text);
   ASSERT_EQ(test::run_talus({"study", study.string(), "--out", "whole"}, folder).exit_code, 0);
 
-  const auto run_until_killed = [&](double seconds) {
-    const std::string command = "cd '" + folder.string() + "' && timeout -s KILL " + std::to_string(seconds) + " '" +
-                                test::talus_exe().string() + "' study '" + study.string() +
-                                "' --out resumed --project off >/dev/null 2>&1";
-    std::system(command.c_str());
-  };
+  const auto run_until_killed = [&](double seconds) { study_until_killed(folder, study, seconds); };
   std::mt19937 random(19);  // fixed: the same kill moments on every run of the test
   std::uniform_real_distribution<double> moment(0.05, 1.5);  // s: within the first scenario (about 2 s)
   run_until_killed(moment(random));
@@ -265,12 +268,7 @@ TEST(Study, ARockFallKilledWithinItsTilesResumesFromItsCommittedUnitsToTheSameLa
     }
     return units;
   };
-  const auto run_until_killed = [&](double seconds) {
-    const std::string command = "cd '" + folder.string() + "' && timeout -s KILL " + std::to_string(seconds) + " '" +
-                                test::talus_exe().string() + "' study '" + study.string() +
-                                "' --out resumed --project off >/dev/null 2>&1";
-    std::system(command.c_str());
-  };
+  const auto run_until_killed = [&](double seconds) { study_until_killed(folder, study, seconds); };
   std::mt19937 random(23);  // fixed: the same kill moments on every run of the test
   std::uniform_real_distribution<double> moment(0.05, 1.0);
   run_until_killed(moment(random));
