@@ -263,6 +263,7 @@ DemInput read_dem(const std::filesystem::path& path, const CrsOption& crs) {
       if (file_srs == nullptr || file_srs->IsEmpty()) {
         throw InputError(name + ": has no CRS; give it with --crs EPSG:nnnn, --crs WKT or --crs local");
       }
+      refuse_geocentric_crs(file_srs, name);
       srs = *file_srs;
       srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
       if (srs.IsGeographic() && !coordinates_fit_degrees(spec)) {

@@ -65,6 +65,14 @@ std::string wkt_of(const OGRSpatialReference* srs) {
   return text;
 }
 
+void refuse_geocentric_crs(const OGRSpatialReference* srs, const std::string& name) {
+  if (srs == nullptr || !srs->IsGeocentric()) return;
+  const char* crs_name = srs->GetName();
+  throw InputError(name + ": its CRS" + (crs_name ? " (" + std::string(crs_name) + ")" : std::string()) +
+                   " is geocentric (X, Y, Z from the Earth's centre), not a map's; reproject it to a projected CRS "
+                   "(gdalwarp -t_srs EPSG:nnnn) or give the right one with --crs");
+}
+
 void write_failure(const std::filesystem::path& path, const std::string& step) {
   throw std::runtime_error("cannot write " + path.string() + ": " + step + ": " + last_gdal_error("failed"));
 }

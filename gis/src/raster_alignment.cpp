@@ -106,6 +106,7 @@ AlignedRaster align_raster(const std::filesystem::path& path, const std::string&
   OGRSpatialReference source_srs;
   source_srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   const OGRSpatialReference* file_srs = dataset->GetSpatialRef();
+  if (crs.kind != CrsOption::Kind::local) refuse_geocentric_crs(file_srs, name);
   const Bounds own = bounds_of(source);
   const bool own_is_contradicted = file_srs != nullptr && file_srs->IsGeographic() &&
                                    (own.x0 < -180.0 || own.x1 > 360.0 || own.y0 < -90.0 || own.y1 > 90.0);

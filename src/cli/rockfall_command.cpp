@@ -44,7 +44,7 @@ void add_rockfall_command(CLI::App& app, Action& action, const std::vector<std::
       ->check(whole_number());
   auto* memory = cmd->add_option("--memory", o->tiles.memory,
                                  "GB the run may use; a larger region runs in tiles (default: half of this machine's memory)");
-  auto* halo = cmd->add_option("--halo", o->tiles.halo, "m a tile's rocks may run beyond it (default 1000)");
+  auto* halo = cmd->add_option("--halo", o->tiles.halo, "m a tile's rocks may run beyond it (default 2000)");
   auto* tile_size = cmd->add_option("--tile-size", o->tiles.size, "Cells on a side of a tile (default: from --memory)");
   auto* project = cmd->add_option("--project", o->project,
                                   "on (default): also write project.qgz, hillshade.tif and quicklook/*.png with QGIS; off");

@@ -16,7 +16,7 @@ namespace talus::cli {
 // What the user chooses ([tiles] in a scenario or study file; --memory, --halo, --tile-size).
 struct TileChoice {
   double memory = 0;      // GB the run may use; 0: half of this machine's memory
-  double halo = 1000;     // m beyond a tile's core that its rocks may reach
+  double halo = 2000;     // m beyond a tile's core that its rocks may reach (Tirol: some pass 1 km)
   int size = 0;           // cells on a side of a tile's core; 0: the largest that memory allows
 };
 

@@ -123,6 +123,33 @@ TEST(DemReader, RefusesAGeographicCrsOnMetreCoordinates) {
   EXPECT_NE(fixed.crs_name.find("31254"), std::string::npos);
 }
 
+// A fuzz finding (docs/fuzzing.md): a raster in a geocentric CRS (ITRF92, EPSG:4914) made PROJ
+// search for a transformation to the DEM's CRS for about a second per input; it is no map's
+// CRS, and is refused at once, as the DEM and as any other raster.
+TEST(DemReader, RefusesAGeocentricCrs) {
+  const auto dir = test::fresh_folder("geocentric");
+  RasterFixture geocentric;
+  geocentric.crs = "EPSG:4914";
+  geocentric.x0 = 11.0;
+  geocentric.y0 = 47.0;
+  geocentric.cell = 0.001;
+  geocentric.width = geocentric.height = 4;
+  test::write_raster(dir / "geocentric.tif", geocentric);
+  const auto sample = test::source_dir() / "sample_dem";
+  for (const bool as_dem : {true, false}) {
+    SceneInputs inputs;
+    inputs.dem = as_dem ? dir / "geocentric.tif" : sample / "dem.tif";
+    if (!as_dem) inputs.lithology = dir / "geocentric.tif";
+    try {
+      load_scene(inputs);
+      ADD_FAILURE() << "a geocentric CRS was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("geocentric.tif"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is geocentric"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(DemReader, ReprojectsAGeographicDemToItsUtmZone) {
   const auto folder = test::fresh_folder("geographic_dem");
   RasterFixture dem;

@@ -35,6 +35,11 @@ GridSpec raster_grid(GDALDataset& dataset, const std::string& name);
 // WKT2 text of a spatial reference, empty for none.
 std::string wkt_of(const OGRSpatialReference* srs);
 
+// A map's raster has a projected, geographic or local CRS; a geocentric one (X, Y, Z from the
+// Earth's centre, such as EPSG:4914) is InputError naming the file, before PROJ searches for a
+// transformation from it (seconds, a fuzz finding).
+void refuse_geocentric_crs(const OGRSpatialReference* srs, const std::string& name);
+
 // Throws std::runtime_error "cannot write PATH: STEP: GDAL's message".
 [[noreturn]] void write_failure(const std::filesystem::path& path, const std::string& step);
 // write_failure(path, step) unless `result` is OGRERR_NONE.
