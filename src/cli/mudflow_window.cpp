@@ -52,10 +52,10 @@ MudflowWindow plan_mudflow_window(const gis::Scene& region, const TileChoice& ch
   if (col1 < 0) return result;  // nothing to release: the run says so on the whole grid
   const double cell = std::min(grid.cell_width(), grid.cell_height());
   const int halo = static_cast<int>(std::ceil(choice.halo / cell));
-  const int border = halo + static_cast<int>(std::ceil(margin_m / cell)) + 2;
-  const int c0 = std::max(0, col0 - border), c1 = std::min(grid.width, col1 + 1 + border);
-  const int r0 = std::max(0, row0 - border), r1 = std::min(grid.height, row1 + 1 + border);
-  result.window = grid.window(c0, r0, c1 - c0, r1 - r0);
+  const HaloWindow around =
+      halo_window(grid, col0, col1 + 1, row0, row1 + 1, halo, static_cast<int>(std::ceil(margin_m / cell)) + 2);
+  result.window = around.window;
+  result.halo_edge = around.halo_edge;
   result.window_bytes = static_cast<double>(result.window->cell_count()) * kTileBytesPerCell;
   if (kBaseBytes + plan.region_bytes + result.window_bytes > plan.memory_bytes && choice.size == 0) {
     std::ostringstream halo_text;  // the halo as given, the sizes to 3 digits
@@ -67,12 +67,6 @@ MudflowWindow plan_mudflow_window(const gis::Scene& region, const TileChoice& ch
             << (kBaseBytes + plan.region_bytes + result.window_bytes) / 1e9 << " GB; give more memory or a smaller --halo";
     throw InputError(message.str());
   }
-  const auto& gt = grid.geotransform;
-  const int hc0 = col0 - halo, hc1 = col1 + 1 + halo, hr0 = row0 - halo, hr1 = row1 + 1 + halo;
-  if (hc0 > 0) result.halo_edge.x_min = gt[0] + hc0 * gt[1];
-  if (hc1 < grid.width) result.halo_edge.x_max = gt[0] + hc1 * gt[1];
-  if (hr0 > 0) result.halo_edge.y_max = gt[3] + hr0 * gt[5];
-  if (hr1 < grid.height) result.halo_edge.y_min = gt[3] + hr1 * gt[5];
   return result;
 }
 

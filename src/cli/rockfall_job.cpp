@@ -13,11 +13,11 @@
 #include "envelope_convergence_report.hpp"
 #include "intensity_layer.hpp"
 #include "rockfall_layers.hpp"
-#include "run_project.hpp"
 #include "rockfall_tiles.hpp"
+#include "run_project.hpp"
 #include "tile_plan.hpp"
-#include "unit_parts.hpp"
 #include "truncated_trajectories.hpp"
+#include "unit_parts.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/layer_writer.hpp"
 #include "talus/gis/run_record.hpp"
@@ -145,7 +145,7 @@ RockfallScene read_rockfall_scene(RockfallOptions& o, RunChoices choices) {
 std::string unit_parts_key(const RockfallOptions& o, const TilePlan& plan) {
   nlohmann::ordered_json key = nlohmann::ordered_json::parse(o.unit_key);
   key["units"] = {{"tiles", plan.tiles.size()},
-                  {"tile_cells", std::max(plan.tiles.front().core.width, plan.tiles.front().core.height)},
+                  {"tile_cells", plan.core_cells},
                   {"halo_cells", plan.halo_cells},
                   {"sources_per_unit", kSourcesPerUnit}};
   return key.dump(1);
@@ -186,9 +186,8 @@ std::optional<RockfallResult> simulate_shares(const RockfallScene& r, const Traj
 // The tiles in run.json (issue 19, item 4): none when the run was not tiled.
 nlohmann::json tiles_record(const TilePlan& plan, const TileChoice& choice) {
   if (!plan.tiled()) return nullptr;
-  const GridSpec& core = plan.tiles.front().core;
   return {{"tiles", plan.tiles.size()},
-          {"tile_cells", std::max(core.width, core.height)},
+          {"tile_cells", plan.core_cells},
           {"halo_m", choice.halo},
           {"halo_cells", plan.halo_cells},
           {"margin_cells", plan.margin_cells},
@@ -232,10 +231,9 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   const auto simulate_start = std::chrono::steady_clock::now();
   if (read->plan.tiled()) {
     const TilePlan& plan = read->plan;
-    const GridSpec& core = plan.tiles.front().core;
     output.say(printf_text("Tiles: %zu of at most %d x %d cells with a halo of %g m, for --memory %.3g GB "
                            "(estimated %.3g GB a tile, %.3g GB for the region)",
-                           plan.tiles.size(), core.width, core.height, o.tiles.halo, plan.memory_bytes / 1e9,
+                           plan.tiles.size(), plan.core_cells, plan.core_cells, o.tiles.halo, plan.memory_bytes / 1e9,
                            plan.tile_bytes / 1e9, plan.region_bytes / 1e9));
   }
   const std::unique_ptr<TrajectoryModel> model = trajectory_model(o);

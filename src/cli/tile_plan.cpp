@@ -38,6 +38,7 @@ TilePlan plan_tiles(const GridSpec& region, const TileChoice& choice, double mar
   const double for_tiles = plan.memory_bytes - kBaseBytes - plan.region_bytes;
   const auto whole_region = [&] {
     plan.tiles = {Tile{region, region, TileBounds{}}};
+    plan.core_cells = std::max(region.width, region.height);
     plan.tile_bytes = static_cast<double>(region.cell_count()) * kTileBytesPerCell;
   };
   if (choice.size == 0 && static_cast<double>(region.cell_count()) * kTileBytesPerCell <= for_tiles) {
@@ -70,43 +71,45 @@ TilePlan plan_tiles(const GridSpec& region, const TileChoice& choice, double mar
     whole_region();
     return plan;
   }
-  const auto& gt = region.geotransform;
+  plan.core_cells = core;
   for (int row = 0; row < region.height; row += core) {
     for (int col = 0; col < region.width; col += core) {
       const int w = std::min(core, region.width - col), h = std::min(core, region.height - row);
-      Tile tile;
-      tile.core = region.window(col, row, w, h);
-      const int c0 = std::max(0, col - border), r0 = std::max(0, row - border);
-      const int c1 = std::min(region.width, col + w + border), r1 = std::min(region.height, row + h + border);
-      tile.window = region.window(c0, r0, c1 - c0, r1 - r0);
-      // The halo's cell edges; north up, rows grow southwards, so its first row's edge is its largest y.
-      const int hc0 = col - plan.halo_cells, hc1 = col + w + plan.halo_cells;
-      const int hr0 = row - plan.halo_cells, hr1 = row + h + plan.halo_cells;
-      if (hc0 > 0) tile.halo_edge.x_min = gt[0] + hc0 * gt[1];
-      if (hc1 < region.width) tile.halo_edge.x_max = gt[0] + hc1 * gt[1];
-      if (hr0 > 0) tile.halo_edge.y_max = gt[3] + hr0 * gt[5];
-      if (hr1 < region.height) tile.halo_edge.y_min = gt[3] + hr1 * gt[5];
-      plan.tile_bytes = std::max(plan.tile_bytes, static_cast<double>(tile.window.cell_count()) * kTileBytesPerCell);
-      plan.tiles.push_back(tile);
+      const HaloWindow around = halo_window(region, col, col + w, row, row + h, plan.halo_cells, plan.margin_cells);
+      plan.tiles.push_back(Tile{region.window(col, row, w, h), around.window, around.halo_edge});
+      plan.tile_bytes = std::max(plan.tile_bytes, static_cast<double>(around.window.cell_count()) * kTileBytesPerCell);
     }
   }
   return plan;
 }
 
+HaloWindow halo_window(const GridSpec& region, int col0, int col1, int row0, int row1, int halo, int margin) {
+  const int border = halo + margin;
+  const int c0 = std::max(0, col0 - border), c1 = std::min(region.width, col1 + border);
+  const int r0 = std::max(0, row0 - border), r1 = std::min(region.height, row1 + border);
+  HaloWindow out{region.window(c0, r0, c1 - c0, r1 - r0), TileBounds{}};
+  // The halo's cell edges; north up, rows grow southwards, so its first row's edge is its largest y.
+  const auto& gt = region.geotransform;
+  if (col0 - halo > 0) out.halo_edge.x_min = gt[0] + (col0 - halo) * gt[1];
+  if (col1 + halo < region.width) out.halo_edge.x_max = gt[0] + (col1 + halo) * gt[1];
+  if (row0 - halo > 0) out.halo_edge.y_max = gt[3] + (row0 - halo) * gt[5];
+  if (row1 + halo < region.height) out.halo_edge.y_min = gt[3] + (row1 + halo) * gt[5];
+  return out;
+}
+
 std::vector<std::vector<bool>> sources_by_tile(const TilePlan& plan, const GridSpec& region,
                                                const std::vector<ReleaseSource>& sources) {
   std::vector<std::vector<bool>> selected(plan.tiles.size(), std::vector<bool>(sources.size(), false));
+  if (!plan.tiled()) {
+    selected.front().assign(sources.size(), true);
+    return selected;
+  }
+  // Tiles go row by row, core_cells on a side: a source's tile follows from its cell.
+  const int per_row = (region.width + plan.core_cells - 1) / plan.core_cells;
   for (std::size_t s = 0; s < sources.size(); ++s) {
     const int col = std::clamp(static_cast<int>(std::floor(region.col_of(sources[s].x) + 0.5)), 0, region.width - 1);
     const int row = std::clamp(static_cast<int>(std::floor(region.row_of(sources[s].y) + 0.5)), 0, region.height - 1);
-    for (std::size_t t = 0; t < plan.tiles.size(); ++t) {
-      const GridSpec& core = plan.tiles[t].core;
-      if (col >= core.col_offset && col < core.col_offset + core.width && row >= core.row_offset &&
-          row < core.row_offset + core.height) {
-        selected[t][s] = true;
-        break;
-      }
-    }
+    selected[static_cast<std::size_t>((row / plan.core_cells) * per_row + col / plan.core_cells)][s] = true;
   }
   return selected;
 }

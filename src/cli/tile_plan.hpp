@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "talus/core/grid_spec.hpp"
+#include "talus/core/tile_bounds.hpp"
 #include "talus/rockfall/monte_carlo.hpp"
 
 namespace talus::cli {
@@ -26,8 +27,18 @@ struct Tile {
   TileBounds halo_edge;   // m: infinite on the sides where the tile reaches the region's edge
 };
 
+// The cells [col0, col1) x [row0, row1) of `region` grown by `halo` cells: the halo's edge (m,
+// infinite where it passes the region's edge), and the window that adds `margin` cells more,
+// clipped to the region. For a tile's core, and for a mud flow's release.
+struct HaloWindow {
+  GridSpec window;
+  TileBounds halo_edge;
+};
+HaloWindow halo_window(const GridSpec& region, int col0, int col1, int row0, int row1, int halo, int margin);
+
 struct TilePlan {
   std::vector<Tile> tiles;      // row by row; one tile: the run is not tiled
+  int core_cells = 0;           // cells on a side of a tile's core (the last row and column may be narrower)
   double memory_bytes = 0;      // the budget the plan fits
   double tile_bytes = 0;        // the largest window's estimated bytes
   double region_bytes = 0;      // the estimated bytes of what the region holds whole
