@@ -3,14 +3,15 @@
 
 Runs `talus mudflow` on AvaFrame's avaAlr case (validation/avaalr_com1dfa/) once per particle
 size x internal viscosity x seed, with the case's scenario and only `[rheology]
-internal_viscosity` changed, then validation/avaalr_com1dfa/compare.py on each run, and prints
-one Markdown row per run: affected area against com1DFA's, footprint IoU, runout along the path
-and peak velocity (definitions in compare.py and docs/validation.md, "Where the IoU is lost"),
+internal_viscosity` (and with --pressure, `[mud] pressure`) changed, then validation/avaalr_com1dfa/compare.py on each run, and prints
+one Markdown row per run: affected area against com1DFA's, footprint IoU, runout along the path,
+peak thickness and peak velocity (definitions in compare.py and docs/validation.md, "Where the IoU is lost"),
 with the wall time of the simulation (s, from run.json) and the simulated time (s).
 
 Usage (from the repository root; about 5-10 s per run at 4-5 m particles, 20-30 s at 2.5 m):
   /usr/bin/python3 bench/avaalr_resolution_sweep.py [--talus build/talus] [--sizes 4,5]
       [--viscosities 14,16,17,18] [--seeds 1,2,3] [--threads 2] [--work DIR]
+      [--pressure normal|vertical]
 """
 import argparse
 import json
@@ -26,6 +27,7 @@ FIGURES = {  # compare.py's row label -> column name here
     "affected area, peak thickness > 0.1 m (km2)": "area",
     "footprint IoU": "iou",
     "runout along the path (m)": "runout",
+    "peak flow thickness (m)": "peak_thickness",
     "peak velocity (m/s)": "peak_velocity",
 }
 
@@ -34,13 +36,20 @@ def numbers(text):
     return [float(x) for x in re.split(r"[,\s]+", text.strip()) if x]
 
 
-def scenario_with_viscosity(viscosity, path):
-    """The case's scenario with its internal_viscosity line replaced (m2/s)."""
-    text = (CASE / "scenario.toml").read_text()
-    changed, count = re.subn(r"(?m)^internal_viscosity = .*$", f"internal_viscosity = {viscosity:g}", text)
+def replaced(text, key, value):
+    """The scenario text with its one `key = ...` line set to `key = value`."""
+    changed, count = re.subn(rf"(?m)^{key} = .*$", f"{key} = {value}", text)
     if count != 1:
-        sys.exit(f"{CASE / 'scenario.toml'}: expected one internal_viscosity line, found {count}")
-    path.write_text(changed)
+        sys.exit(f"{CASE / 'scenario.toml'}: expected one {key} line, found {count}")
+    return changed
+
+
+def scenario_with(viscosity, pressure, path):
+    """The case's scenario with its internal viscosity (m2/s) and, if given, its pressure column."""
+    text = replaced((CASE / "scenario.toml").read_text(), "internal_viscosity", f"{viscosity:g}")
+    if pressure:
+        text = replaced(text, "pressure", f'"{pressure}"')
+    path.write_text(text)
 
 
 def comparison(out):
@@ -63,16 +72,18 @@ def main():
     parser.add_argument("--seeds", default="1,2,3")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--work", type=pathlib.Path, default=ROOT / "build" / "avaalr-resolution-sweep")
+    parser.add_argument("--pressure", choices=["normal", "vertical"],
+                        help="[mud] pressure (docs/mudflow.md section 4); default: the case's scenario's")
     args = parser.parse_args()
     args.work.mkdir(parents=True, exist_ok=True)
 
-    print("| particle size (m) | internal viscosity (m2/s) | seed | affected area | IoU | runout | peak velocity "
-          "| simulated (s) | wall (s) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| particle size (m) | internal viscosity (m2/s) | seed | affected area | IoU | runout | peak thickness "
+          "| peak velocity | simulated (s) | wall (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for size in numbers(args.sizes):
         for viscosity in numbers(args.viscosities):
             scenario = args.work / f"scenario_nu{viscosity:g}.toml"
-            scenario_with_viscosity(viscosity, scenario)
+            scenario_with(viscosity, args.pressure, scenario)
             for seed in (int(s) for s in numbers(args.seeds)):
                 out = args.work / f"size{size:g}_nu{viscosity:g}_seed{seed}"
                 subprocess.run([str(args.talus), "mudflow", "--dem", str(DEM), "--release", str(CASE / "release.vrt"),
@@ -82,7 +93,7 @@ def main():
                 record = json.loads((out / "run.json").read_text())
                 f = comparison(out)
                 print(f"| {size:g} | {viscosity:g} | {seed} | {f['area'][1]} | {f['iou'][0]} | {f['runout'][1]} "
-                      f"| {f['peak_velocity'][1]} | {record['end']['simulated_time_s']:.1f} "
+                      f"| {f['peak_thickness'][1]} | {f['peak_velocity'][1]} | {record['end']['simulated_time_s']:.1f} "
                       f"| {record['timings_s']['simulate']:.2f} |", flush=True)
 
 

@@ -54,6 +54,9 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   table.require(o.release_thickness == "normal" || o.release_thickness == "vertical", "mud", "release_thickness",
                 o.release_thickness, "use normal or vertical");
   o.settings.release_thickness = parse_release_thickness(o.release_thickness);
+  table.require(o.pressure == "normal" || o.pressure == "vertical", "mud", "pressure", o.pressure,
+                "use normal or vertical");
+  o.settings.pressure = parse_pressure_column(o.pressure);
   table.require(!o.depth_field.empty(), "mud", "depth_field", o.depth_field, "expected an attribute name");
   table.require(o.release_depth == 0.0 || o.depth_field == "depth", "mud", "depth_field", o.depth_field,
                 "give either a depth attribute or one release depth, not both");
@@ -107,6 +110,10 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
   table.add("mud", "release_thickness", "",
             "how a release depth is measured: normal (to the ground, the thin-layer convention) or vertical",
             &o.release_thickness);
+  table.add("mud", "pressure", "",
+            "whose weight the pressure in the mud is: normal (the thin-layer column normal to the ground, the "
+            "default) or vertical (the vertical column, as com1DFA's default SPH option; for code-to-code comparison)",
+            &o.pressure);
   table.add("mud", "release_depth", "m",
             "one release depth for every release cell, polygon and point, whatever the release file holds (0: the "
             "file's depths)",

@@ -30,6 +30,7 @@ struct MudflowOptions {
   std::string rheology = to_string(RheologyParameters{}.rheology);
   std::string adaptive = "on";  // --adaptive on|off, into settings.adaptive
   std::string release_thickness = to_string(ReleaseThickness::normal);  // into settings.release_thickness
+  std::string pressure = to_string(PressureColumn::normal);             // into settings.pressure
   double release_depth = 0;            // m: --depth, [mud] release_depth; 0: the release file's depths
   std::string depth_field = "depth";   // --depth-field, [mud] depth_field
   std::string snapshot_start = gis::kDefaultSnapshotStart;  // --start-time, [outputs] snapshot_start

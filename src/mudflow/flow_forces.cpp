@@ -2,6 +2,7 @@
 // "Forces").
 #include "talus/mudflow/flow_forces.hpp"
 
+#include "talus/core/errors.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 
 namespace talus {
@@ -13,15 +14,28 @@ constexpr double kViscousSofteningPerSpacing2 = 0.01;
 
 }  // namespace
 
-// Pi_i / sigma_i^2 = g cos^2(theta_i) / (2 rho0) (m3/kg s2): with Pi proportional to sigma^2 the
-// pressure term needs only the neighbours' positions and slopes, never their densities, so it
-// is exact for particles whose neighbours are between their own steps.
+PressureColumn parse_pressure_column(const std::string& text) {
+  if (text == "normal") return PressureColumn::normal;
+  if (text == "vertical") return PressureColumn::vertical;
+  throw InputError("unknown pressure column '" + text + "': expected normal or vertical");
+}
+
+const char* to_string(PressureColumn column) { return column == PressureColumn::normal ? "normal" : "vertical"; }
+
+double pressure_slope_factor(PressureColumn column, double cos_slope) {
+  return column == PressureColumn::normal ? cos_slope * cos_slope : 1.0;
+}
+
+// Pi_i / sigma_i^2 = g cos^2(theta_i) / (2 rho0) (m3/kg s2; g / (2 rho0) for the vertical
+// column): with Pi proportional to sigma^2 the pressure term needs only the neighbours'
+// positions and slopes, never their densities, so it is exact for particles whose neighbours are
+// between their own steps.
 Eigen::Vector3d flow_acceleration(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours,
                                   const FootNormals& normals, const FlowForceConstants& constants) {
   const double xi = particles.x[i], yi = particles.y[i];
   const double vxi = particles.vx[i], vyi = particles.vy[i], vzi = particles.vz[i];
   const double sigma_i = particles.density[i];
-  const double cos_i = normals.z[i];
+  const double factor_i = pressure_slope_factor(constants.pressure, normals.z[i]);
   const double pressure_scale = constants.gravity / (2.0 * constants.mud_density);
   const double radius_i = particles.radius[i];
   const double softening_scale = kViscousSofteningPerSpacing2 / (4.0 * kSupportPerSpacing * kSupportPerSpacing);
@@ -41,8 +55,8 @@ Eigen::Vector3d flow_acceleration(const ParticleSet& particles, std::size_t i, c
   for (const NeighbourPair& pair : neighbours) {
     const std::size_t j = pair.index;
     const double dx = xi - x[j], dy = yi - y[j];
-    const double cos_j = cos_slope[j];
-    const double push = mass[j] * pressure_scale * (cos_i * cos_i + cos_j * cos_j) * pair.gradient_factor;
+    const double factor_j = pressure_slope_factor(constants.pressure, cos_slope[j]);
+    const double push = mass[j] * pressure_scale * (factor_i + factor_j) * pair.gradient_factor;
     px -= push * dx;
     py -= push * dy;
     if (nu > 0.0) {

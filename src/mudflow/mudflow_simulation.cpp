@@ -135,7 +135,7 @@ class MudflowRun {
         finest_level_(settings.deepest_level + settings.max_retries),
         level_steps_(level_steps(coarse_step_, finest_level_)),
         column_{settings.mud_density, settings.gravity},
-        forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity},
+        forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity, settings.pressure},
         criteria_{settings.courant, settings.rheology.internal_viscosity,
                   std::min(ground.spec().cell_width(), ground.spec().cell_height()), settings.cells_per_step},
         largest_cell_(std::max(ground.spec().cell_width(), ground.spec().cell_height())),
@@ -373,7 +373,11 @@ void MudflowRun::evaluate_all() {
 int MudflowRun::wanted_level(std::size_t i) const {
   if (s_.unguarded_step > 0) return depth_;
   const double spacing = smoothing_[i] / kSupportPerSpacing;
-  const double wave_speed = std::sqrt(s_.gravity * normals_.z[i] * p_.depth[i]);
+  // The pressure's wave speed sqrt(dPi/dsigma): sqrt(g cos(theta) h) for the thin-layer pressure,
+  // sqrt(g h / cos(theta)) for the vertical column's.
+  const double cos_slope = normals_.z[i];
+  const double wave_speed = s_.pressure == PressureColumn::normal ? std::sqrt(s_.gravity * cos_slope * p_.depth[i])
+                                                                  : std::sqrt(s_.gravity * p_.depth[i] / cos_slope);
   const double acceleration = std::sqrt(p_.ax[i] * p_.ax[i] + p_.ay[i] * p_.ay[i] + p_.az[i] * p_.az[i]);
   const double closing = closing_speed(p_, i, neighbours_[i]);
   const double step = stable_step(spacing, wave_speed, closing, p_.velocity(i).norm(), acceleration, criteria_);

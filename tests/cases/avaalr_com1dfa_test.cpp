@@ -107,6 +107,7 @@ struct Footprint {
   double area_km2 = 0;
   double runout = 0;        // m: longest path inside the footprint from the release's highest cell (path_distances.hpp)
   double travel_angle = 0;  // degrees
+  double peak_thickness = 0; // m
   double peak_velocity = 0; // m/s
 };
 
@@ -121,6 +122,7 @@ Footprint footprint(const Field& thickness, const Field& velocity, const Field& 
     inside[k] = f.affected[k] || release[k];
     if (f.affected[k]) {
       f.area_km2 += thickness.cell * thickness.cell * 1e-6;
+      f.peak_thickness = std::max(f.peak_thickness, thickness.values[k]);
       f.peak_velocity = std::max(f.peak_velocity, velocity.values[k]);
     }
     if (release[k] && dem.values[k] > top_z) {
@@ -142,9 +144,11 @@ Footprint footprint(const Field& thickness, const Field& velocity, const Field& 
 // - the release is 1 m normal to the slope, as com1DFA measures it: the same volume within 2%
 //   (the two codes rasterize the polygon differently; measured +0.9%);
 // - issue 20's targets: affected area within 10%, runout within 5%, peak velocity within 10%;
-//   travel angle within 1 degree. The footprint IoU is asserted at 0.69: the issue's 0.8 is not
-//   reached (measured 0.705, and 0.697-0.711 over three seeds of the release jitter, so the bar
-//   lies below the seed noise; docs/validation.md says where the footprints differ).
+//   travel angle within 1 degree. The footprint IoU is asserted at 0.71: the issue's 0.8 is not
+//   reached (measured 0.721, and 0.721-0.732 over three seeds of the release jitter, so the bar
+//   lies below the seed noise; docs/validation.md says where the footprints differ);
+// - with com1DFA's vertical-column pressure (the case's `[mud] pressure`), the peak thickness
+//   within 40% (measured +26.7%, +27-32% over the seeds; +74% with the thin-layer pressure).
 TEST(AvaAlrCom1dfa, VolumeFootprintRunoutAndPeakVelocityAgreeWithComDfa) {
   GDALAllRegister();
   const fs::path root = test::fresh_folder("avaalr_com1dfa");
@@ -173,10 +177,12 @@ TEST(AvaAlrCom1dfa, VolumeFootprintRunoutAndPeakVelocityAgreeWithComDfa) {
     either += com.affected[k] || talus.affected[k];
   }
   EXPECT_NEAR(talus.area_km2 / com.area_km2, 1.0, 0.10);
-  EXPECT_GE(both / either, 0.69);
+  EXPECT_GE(both / either, 0.71);
   EXPECT_NEAR(talus.runout / com.runout, 1.0, 0.05);
   EXPECT_NEAR(talus.travel_angle, com.travel_angle, 1.0);
   EXPECT_NEAR(talus.peak_velocity / com.peak_velocity, 1.0, 0.10);
+  EXPECT_NEAR(com.peak_thickness, 11.25, 0.01);
+  EXPECT_NEAR(talus.peak_thickness / com.peak_thickness, 1.0, 0.40);
 }
 
 }  // namespace

@@ -11,9 +11,14 @@
 // The sum is projected onto the tangent plane at the particle's foot: projecting a horizontal
 // gradient onto the plane gives the surface gradient, so on a plane of slope theta the pressure
 // term is -g cos(theta) dh/ds (Savage & Hutter 1989; Faccanoni & Mangeney 2012).
+// With PressureColumn::vertical the pressure is instead the weight of the vertical column,
+// Pi = g sigma^2 / (2 rho0), whose horizontal gradient is -g grad(h_vertical): the simplification
+// of SamosAT and AvaFrame com1DFA's default SPH option (sphOption = 1), kept for code-to-code
+// comparison; on a plane of slope theta it pushes 1 / cos^2(theta) times harder.
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -23,11 +28,25 @@
 
 namespace talus {
 
+// Which column's weight the depth-integrated pressure is (docs/mudflow.md section 4).
+enum class PressureColumn {
+  normal,    // thin-layer: rho0 g cos(theta) h^2 / 2 over the depth h normal to the ground
+  vertical,  // rho0 g h_v^2 / 2 over the vertical column h_v = h / cos(theta) (com1DFA sphOption 1)
+};
+
+PressureColumn parse_pressure_column(const std::string& text);
+const char* to_string(PressureColumn column);
+
 struct FlowForceConstants {
   double mud_density = 2000;       // rho0 (kg/m3)
   double gravity = 9.81;           // m/s2
   double internal_viscosity = 0.5; // nu (m2/s)
+  PressureColumn pressure = PressureColumn::normal;
 };
+
+// cos^2(theta) of the thin-layer pressure Pi / sigma^2 at a foot of slope cosine cos_slope, or 1
+// for the vertical column's (-).
+double pressure_slope_factor(PressureColumn column, double cos_slope);
 
 // Pressure, internal friction and gravity on particle i (m/s2), tangent to the ground at its
 // foot, from its neighbour list (compute_density) and every particle's foot normal.

@@ -18,6 +18,7 @@
 #include "talus/core/release.hpp"
 #include "talus/core/tile_bounds.hpp"
 #include "talus/ground/ground_model.hpp"
+#include "talus/mudflow/flow_forces.hpp"
 #include "talus/mudflow/flow_maps.hpp"
 #include "talus/mudflow/release_particles.hpp"
 #include "talus/mudflow/rheology.hpp"
@@ -43,6 +44,7 @@ struct MudflowSettings {
   double gravity = 9.81;            // m/s2
   double particle_size = 2.5;       // m: spacing of the finest particles
   ReleaseThickness release_thickness = ReleaseThickness::normal;  // how a release depth is measured
+  PressureColumn pressure = PressureColumn::normal;  // whose weight the pressure is (flow_forces.hpp)
   bool adaptive = true;             // fission/fusion and individual time steps (paper 4.2)
   int coarse_levels = 2;            // adaptive: sizes particle_size x 2^k, k = 0..coarse_levels; released at the coarsest
   double split_threshold = 0.5;     // split when size x |grad P| / P exceeds this (-)

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "talus/core/errors.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 
 namespace talus {
@@ -118,6 +119,45 @@ TEST(FlowForces, GravityAloneIsItsTangentialPartOnASlope) {
   EXPECT_NEAR(a.dot(normals.at(0)), 0.0, 1e-12);
   EXPECT_GT(a.x(), 0.0);
   EXPECT_LT(a.z(), 0.0);
+}
+
+TEST(FlowForces, TheVerticalColumnsPressurePushesOneOverCosSquaredHarderOnASlope) {
+  // The depth ramp of the first test turned across a plane of slope 30 degrees that falls towards
+  // +x: the vertical column h_v = sigma / rho0 grows as 1 + 0.05 y. The thin-layer pressure gives
+  // -g cos^2(theta) dh_v/dy along y, the vertical column's (com1DFA's sphOption 1) -g dh_v/dy.
+  const double theta = std::acos(-1.0) / 6.0, spacing = 0.5, slope = 0.05;
+  ParticleSet p;
+  for (int a = 0; a < 20; ++a) {
+    for (int b = 0; b < 40; ++b) {
+      const double y = b * spacing;
+      p.add(kRho * (1.0 + slope * y) * spacing * spacing, {a * spacing, y, 0.0}, {0, 0, 0}, kSupportPerSpacing * spacing);
+    }
+  }
+  Evaluated e = evaluate(p);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    e.normals.x[i] = std::sin(theta);
+    e.normals.y[i] = 0.0;
+    e.normals.z[i] = std::cos(theta);
+  }
+  FlowForceConstants thin_layer{kRho, kG, 0.0, PressureColumn::normal};
+  FlowForceConstants vertical{kRho, kG, 0.0, PressureColumn::vertical};
+  const double cos2 = std::cos(theta) * std::cos(theta);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const int a = static_cast<int>(i / 40), b = static_cast<int>(i % 40);
+    if (std::min({a, b, 19 - a, 39 - b}) < 4) continue;
+    const double normal_y = flow_acceleration(p, i, e.lists[i], e.normals, thin_layer).y();
+    const double vertical_y = flow_acceleration(p, i, e.lists[i], e.normals, vertical).y();
+    EXPECT_NEAR(normal_y, -kG * cos2 * slope, 0.05 * kG * cos2 * slope) << i;
+    EXPECT_NEAR(vertical_y, -kG * slope, 0.05 * kG * slope) << i;
+    EXPECT_NEAR(vertical_y * cos2, normal_y, 1e-12 * kG * slope) << i;
+  }
+}
+
+TEST(FlowForces, PressureColumnsAreParsedByName) {
+  EXPECT_EQ(parse_pressure_column("normal"), PressureColumn::normal);
+  EXPECT_EQ(parse_pressure_column("vertical"), PressureColumn::vertical);
+  EXPECT_STREQ(to_string(PressureColumn::vertical), "vertical");
+  EXPECT_THROW(parse_pressure_column("hydrostatic"), InputError);
 }
 
 }  // namespace
