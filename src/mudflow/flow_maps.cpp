@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "talus/mudflow/flow_density.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 #include "talus/mudflow/surface_following.hpp"
 
@@ -91,12 +92,14 @@ void FlowMaps::find_footprint(double x, double y, double radius) {
 }
 
 // Normal depth of cell c from particle i: V w_c / A x cos(theta_c), V = m / rho0 (m3), A the
-// cell area (m2): the horizontal column V w_c / A measured normal to the ground.
+// cell area (m2): the horizontal column V w_c / A measured normal to the ground. The weights w_c
+// spread over i's smoothing radius R_s (flow_density.hpp), the radius its own depth is summed
+// with, so the maps show the depth the dynamics see.
 void FlowMaps::spread(const ParticleSet& particles, std::size_t i, bool with_speed) {
   const double volume = particles.mass[i] / mud_density_;
   const double depth_per_weight = volume / ground_.spec().cell_area();  // m
   const double speed = with_speed ? particles.velocity(i).norm() : 0.0;  // m/s
-  find_footprint(particles.x[i], particles.y[i], std::max(particles.radius[i], min_spreading_radius_));
+  find_footprint(particles.x[i], particles.y[i], std::max(smoothing_radius(particles, i), min_spreading_radius_));
   for (const CellShare& share : footprint_) {
     const double depth = depth_per_weight * share.weight * cos_slope_[share.cell];
     if (!(depth > 0.0)) continue;

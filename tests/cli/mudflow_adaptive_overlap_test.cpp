@@ -67,9 +67,11 @@ TEST(MudflowAdaptiveOverlap, AdaptiveDepositMatchesUniformFinestParticles) {
   }
   ASSERT_GT(either, 1000u);  // the deposit covers about 1810 cells of 25 m2
   const double iou = static_cast<double>(both) / static_cast<double>(either);
-  // 0.82: 0.94 of the seed-to-seed floor 0.876 (measured 0.861: 1672 of 1942 cells, 2026-12-02).
-  EXPECT_GE(iou, 0.82) << both << " of " << either << " cells";
-  // The adaptivity does its work: about 3.3 times fewer particle-steps (24.5 million against 80.2).
+  RecordProperty("deposit_iou", std::to_string(iou));
+  // 0.86: 0.94 of the seed-to-seed floor 0.915 (measured 0.915, 2026-12-03, with the layers
+  // drawn over each particle's smoothing radius; 0.861 against a floor of 0.876 before).
+  EXPECT_GE(iou, 0.86) << both << " of " << either << " cells";
+  // The adaptivity does its work: 4.1 times fewer particle-steps (15.0 million against 61.1).
   EXPECT_LT(2.5 * static_cast<double>(particle_steps(root / "adaptive")),
             static_cast<double>(particle_steps(root / "uniform")));
   fs::remove_all(root);

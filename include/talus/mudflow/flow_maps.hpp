@@ -1,8 +1,10 @@
 // The mud-flow layers (DESIGN.md section 3) gathered from the particles: each particle's volume
-// is spread over the DEM cells whose centres lie within its spreading radius, max(R, 1.5 x the
-// larger cell side) with R its support radius, with kernel weights W(r, spreading radius)
-// normalised to one, so the depth maps hold exactly the particles' volume. The floor of 1.5
-// cells keeps the maps smooth where particles are about as small as the cells or smaller: a
+// is spread over the DEM cells whose centres lie within its spreading radius, max(R_s, 1.5 x
+// the larger cell side) with R_s the smoothing radius its own depth is summed with
+// (flow_density.hpp: R inside the flow, up to 4 R where it thins), with kernel weights
+// W(r, spreading radius) normalised to one, so the depth maps hold exactly the particles'
+// volume and a thinning margin is drawn as thin as the dynamics see it (issue 20). The floor of
+// 1.5 cells keeps the maps smooth where particles are about as small as the cells or smaller: a
 // uniform sheet of 2.5 m particles (R = 6 m) on 10 m cells gives interior depths within 0.002%
 // (23% when spreading within R alone), of 5 m particles (R = 12 m) within 0.4% (3%). Per
 // cell: the maxima over time of flow depth, velocity and impact pressure, the first time the

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "../../validation/synthetic_ground.hpp"
+#include "talus/mudflow/flow_density.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 
 namespace talus {
@@ -135,6 +136,33 @@ TEST(FlowMaps, ParticlesSmallerThanTheCellsGiveSmoothDepths) {
       EXPECT_LT(worst, 0.02) << "slope " << slope << ", lattice turned by " << angle << " rad";
     }
   }
+}
+
+// A lone particle on flat ground whose density sum has thinned it to its widest smoothing
+// radius, 4 R (flow_density.hpp): the map draws it as deep as the dynamics see it,
+// sigma / rho0 = m W(0, 4 R) / rho0, within 2% on 1 m cells (1 / 16 of what its support radius
+// R alone would draw), and spreads it over the cells within 4 R, no farther (nodes on whole
+// metres, the particle on one).
+TEST(FlowMaps, ALoneThinnedParticleIsDrawnAsDeepAsItsDensity) {
+  const GroundModel ground = make_ground(local_spec(120, 120, 1.0), [](double, double) { return 0.0; },
+                                         fast_material(0.5, 0.8, 0.6));
+  const double mass = 5e4, support = 6.0, widest = kLargestSmoothingGrowth * support;  // kg, m, m
+  ParticleSet particles;
+  particles.add(mass, {60.0, -60.0, 0.0}, {1, 0, 0}, support);
+  particles.density[0] = mass * kernel_value(0.0, widest);  // kg/m2
+  FlowMaps maps(ground, kRho, 0.0, false);
+  maps.sample(particles, 0.0);
+  const Grid<float>& depth = maps.layers().flow_depth_max;
+  const double expected = particles.density[0] / kRho;  // m
+  EXPECT_NEAR(depth.at(60, 60), expected, 0.02 * expected);
+  double reach = 0;  // m: the farthest reached cell centre from the particle
+  for (int row = 0; row < 120; ++row) {
+    for (int col = 0; col < 120; ++col) {
+      if (depth.at(col, row) > 0.0f) reach = std::max(reach, std::hypot(col - 60.0, row - 60.0));
+    }
+  }
+  EXPECT_GT(reach, widest - 1.0);
+  EXPECT_LT(reach, widest);
 }
 
 TEST(FlowMaps, MaximaKeepTheLargestSampleAndPressureIsRhoUSquared) {
