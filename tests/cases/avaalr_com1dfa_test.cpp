@@ -144,12 +144,12 @@ Footprint footprint(const Field& thickness, const Field& velocity, const Field& 
 // - the release is 1 m normal to the slope, as com1DFA measures it: the same volume within 2%
 //   (the two codes rasterize the polygon differently; measured +0.9%);
 // - issue 20's targets: affected area within 10%, runout within 5%, peak velocity within 10%;
-//   travel angle within 1 degree. The footprint IoU is asserted at 0.75: the issue's 0.8 is not
-//   reached (measured 0.769, and 0.769-0.776 over three seeds of the release jitter, so the bar
+//   travel angle within 1 degree. The footprint IoU is asserted at 0.77: the issue's 0.8 is not
+//   reached (measured 0.795, and 0.783-0.795 over three seeds of the release jitter, so the bar
 //   lies below the seed noise; docs/validation.md says where the footprints differ);
 // - with com1DFA's vertical-column pressure (the case's `[mud] pressure`), the peak thickness
-//   within 25% (measured +14.9%, +13-16% over the seeds; +74% with the thin-layer pressure and
-//   the layers drawn within the support radius).
+//   within 20% (measured +7.2%, +7-10% over the seeds; +74% with the thin-layer pressure, the
+//   layers drawn within the support radius and the curvature over 20 m).
 TEST(AvaAlrCom1dfa, VolumeFootprintRunoutAndPeakFieldsAgreeWithComDfa) {
   GDALAllRegister();
   const fs::path root = test::fresh_folder("avaalr_com1dfa");
@@ -178,12 +178,12 @@ TEST(AvaAlrCom1dfa, VolumeFootprintRunoutAndPeakFieldsAgreeWithComDfa) {
     either += com.affected[k] || talus.affected[k];
   }
   EXPECT_NEAR(talus.area_km2 / com.area_km2, 1.0, 0.10);
-  EXPECT_GE(both / either, 0.75);
+  EXPECT_GE(both / either, 0.77);
   EXPECT_NEAR(talus.runout / com.runout, 1.0, 0.05);
   EXPECT_NEAR(talus.travel_angle, com.travel_angle, 1.0);
   EXPECT_NEAR(talus.peak_velocity / com.peak_velocity, 1.0, 0.10);
   EXPECT_NEAR(com.peak_thickness, 11.25, 0.01);
-  EXPECT_NEAR(talus.peak_thickness / com.peak_thickness, 1.0, 0.25);
+  EXPECT_NEAR(talus.peak_thickness / com.peak_thickness, 1.0, 0.20);
 }
 
 }  // namespace
