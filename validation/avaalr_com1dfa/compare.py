@@ -8,7 +8,7 @@ TALUS_OUT is the --out folder of
       --release validation/avaalr_com1dfa/release.vrt \
       --scenario validation/avaalr_com1dfa/scenario.toml --out TALUS_OUT
 Prints the comparison table of docs/validation.md ("Mud flow: code-to-code (AvaFrame
-com1DFA)") as Markdown; with --png, writes the difference maps there.
+com1DFA)") as Markdown; with --png, writes the difference maps and a map of the two footprints there.
 
 Definitions (the same as tests/cases/avaalr_com1dfa_test.cpp):
 - affected area: cells whose peak flow thickness exceeds 0.1 m (km2);
@@ -115,10 +115,49 @@ def difference_map(path, title, talus, reference, z, unit, limit):
     plt.close(fig)
 
 
+def footprint_map(path, talus, reference, z):
+    """The two affected areas (peak thickness > 0.1 m) over the hillshade and 20 m contours, cropped
+    to the rows and columns where they differ: cells both reach, com1DFA's only, Talus's only."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    differ = talus ^ reference
+    rows = np.where(differ.any(axis=1))[0]
+    cols = np.where(differ.any(axis=0))[0]
+    r0, r1 = max(rows[0] - 10, 0), min(rows[-1] + 10, z.shape[0])
+    c0, c1 = max(cols[0] - 10, 0), min(cols[-1] + 10, z.shape[1])
+    ground = np.where(z > -1000, z, np.nan)[r0:r1, c0:c1]
+    dy, dx = np.gradient(ground, 5.0)
+    shade = 1.0 - np.hypot(dx, dy) / 2.0
+    classes = np.zeros(z.shape)
+    classes[talus & reference] = 1
+    classes[reference & ~talus] = 2
+    classes[talus & ~reference] = 3
+    colours = ["tab:green", "tab:blue", "tab:red"]
+    fig, ax = plt.subplots(figsize=(5.5, 8))
+    ax.imshow(shade, cmap="gray", vmin=0, vmax=1)
+    ax.imshow(np.ma.masked_where(classes == 0, classes)[r0:r1, c0:c1], cmap=ListedColormap(colours), vmin=1, vmax=3,
+              alpha=0.6, interpolation="nearest")
+    low, high = np.nanmin(ground), np.nanmax(ground)
+    ax.contour(ground, levels=np.arange(np.ceil(low / 20) * 20, high, 20.0), colors="k", linewidths=0.2, alpha=0.6)
+    ax.set_title("Affected area (peak thickness > 0.1 m)")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.legend(handles=[Patch(color=c, alpha=0.6, label=label) for c, label in
+                       zip(colours, ["both", "com1DFA only", "Talus only"])], loc="lower left", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("talus_out", type=pathlib.Path)
-    parser.add_argument("--png", type=pathlib.Path, help="folder for the difference maps")
+    parser.add_argument("--png", type=pathlib.Path, help="folder for the difference maps and the footprint map")
     parser.add_argument("--shared", type=pathlib.Path,
                         default=pathlib.Path(__file__).resolve().parents[3] / "shared",
                         help="the shared data folder (default: ../shared beside the repository)")
@@ -173,6 +212,7 @@ def main():
                        talus_thickness, com_thickness, z, "m", 5.0)
         difference_map(args.png / "avaalr-velocity-difference.png", "Peak velocity, Talus - com1DFA",
                        talus_velocity, com_velocity, z, "m/s", 20.0)
+        footprint_map(args.png / "avaalr-footprints.png", b, a, z)
 
 
 if __name__ == "__main__":
