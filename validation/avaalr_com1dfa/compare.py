@@ -89,6 +89,15 @@ def footprint_figures(thickness, velocity, release, z, cell):
     }
 
 
+def side_channel(shape):
+    """The side channel east of the fan's left bank, where the two footprints part most
+    (docs/validation.md, point 8): cells at or east of column 115 in rows 400 to 529 of
+    avaAlr's 5 m grid."""
+    mask = np.zeros(shape, dtype=bool)
+    mask[400:530, 115:] = True
+    return mask
+
+
 def difference_map(path, title, talus, reference, z, unit, limit):
     import matplotlib
 
@@ -206,6 +215,9 @@ def main():
     dv = talus_velocity[both] - com_velocity[both]
     print(f"| peak thickness where both reach: mean / RMS difference (m) | - | {dh.mean():+.2f} / {np.sqrt((dh**2).mean()):.2f} | - |")
     print(f"| peak velocity where both reach: mean / RMS difference (m/s) | - | {dv.mean():+.1f} / {np.sqrt((dv**2).mean()):.1f} | - |")
+    side_only = b & ~a & side_channel(a.shape)
+    print(f"| cells reached by Talus only in the side channel (rows 400-529, columns >= 115) | - | {side_only.sum()} | - |")
+    print(f"| footprint IoU without them | - | {(a & b).sum() / ((b & ~side_only) | a).sum():.3f} | - |")
     if args.png:
         args.png.mkdir(parents=True, exist_ok=True)
         difference_map(args.png / "avaalr-thickness-difference.png", "Peak flow thickness, Talus - com1DFA",
