@@ -98,6 +98,18 @@ def side_channel(shape):
     return mask
 
 
+def shaded_window(mask, z, margin):
+    """The window (first row, end row, first column, end column) around the cells of `mask`
+    widened by `margin` cells, the slope shading of the 5 m DEM `z` in it and its elevations."""
+    rows = np.where(mask.any(axis=1))[0]
+    cols = np.where(mask.any(axis=0))[0]
+    r0, r1 = max(rows[0] - margin, 0), min(rows[-1] + margin, z.shape[0])
+    c0, c1 = max(cols[0] - margin, 0), min(cols[-1] + margin, z.shape[1])
+    ground = np.where(z > -1000, z, np.nan)[r0:r1, c0:c1]
+    dy, dx = np.gradient(ground, 5.0)
+    return (r0, r1, c0, c1), 1.0 - np.hypot(dx, dy) / 2.0, ground
+
+
 def difference_map(path, title, talus, reference, z, unit, limit):
     import matplotlib
 
@@ -105,12 +117,7 @@ def difference_map(path, title, talus, reference, z, unit, limit):
     import matplotlib.pyplot as plt
 
     either = (talus > 0) | (reference > 0)
-    rows = np.where(either.any(axis=1))[0]
-    cols = np.where(either.any(axis=0))[0]
-    r0, r1 = max(rows[0] - 20, 0), min(rows[-1] + 20, z.shape[0])
-    c0, c1 = max(cols[0] - 20, 0), min(cols[-1] + 20, z.shape[1])
-    dy, dx = np.gradient(np.where(z > -1000, z, np.nan)[r0:r1, c0:c1], 5.0)
-    shade = 1.0 - np.hypot(dx, dy) / 2.0
+    (r0, r1, c0, c1), shade, _ = shaded_window(either, z, 20)
     difference = np.ma.masked_where(~either[r0:r1, c0:c1], (talus - reference)[r0:r1, c0:c1])
     fig, ax = plt.subplots(figsize=(5.5, 8))
     ax.imshow(shade, cmap="gray", vmin=0, vmax=1)
@@ -135,13 +142,7 @@ def footprint_map(path, talus, reference, z):
     from matplotlib.patches import Patch
 
     differ = talus ^ reference
-    rows = np.where(differ.any(axis=1))[0]
-    cols = np.where(differ.any(axis=0))[0]
-    r0, r1 = max(rows[0] - 10, 0), min(rows[-1] + 10, z.shape[0])
-    c0, c1 = max(cols[0] - 10, 0), min(cols[-1] + 10, z.shape[1])
-    ground = np.where(z > -1000, z, np.nan)[r0:r1, c0:c1]
-    dy, dx = np.gradient(ground, 5.0)
-    shade = 1.0 - np.hypot(dx, dy) / 2.0
+    (r0, r1, c0, c1), shade, ground = shaded_window(differ if differ.any() else talus | reference, z, 10)
     classes = np.zeros(z.shape)
     classes[talus & reference] = 1
     classes[reference & ~talus] = 2
