@@ -190,6 +190,10 @@ def main():
     com_velocity = read(reference_dir / "com1dfa_voellmy_pfv.tif")
     talus_thickness = read(args.talus_out / "flow_depth_max.tif")
     talus_velocity = read(args.talus_out / "velocity_max.tif")
+    if talus_thickness.shape != z.shape:
+        parser.exit(2, f"compare.py: error: {args.talus_out / 'flow_depth_max.tif'}: {talus_thickness.shape[1]} x "
+                       f"{talus_thickness.shape[0]} cells, not avaAlr's {z.shape[1]} x {z.shape[0]}: not a run on "
+                       f"avaAlr.tif\n")
     com = footprint_figures(com_thickness, com_velocity, release, z, cell)
     talus = footprint_figures(talus_thickness, talus_velocity, release, z, cell)
     a, b = com["affected"], talus["affected"]
