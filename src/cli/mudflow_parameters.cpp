@@ -128,6 +128,10 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
   table.add("adaptivity", "merge_threshold", "-", "a calm group merges when each member's size x |grad P| / P is below this",
             &s.merge_threshold, Range{0, 100, false, true});
   table.add("adaptivity", "merge_speed", "m/s", "and its members' velocities differ by less than this", &s.merge_speed, Range{0, 100, false, false});
+  table.add("adaptivity", "crowded_merge", "-",
+            "crowded fusion: groups in mud deeper than their particles resolve merge while the merged particle sums "
+            "over at most this many finest support radii; adaptive runs only (docs/mudflow.md section 8)",
+            &s.crowded_merge, Range{1, 4, false, false, 0, "off"});
   table.add("time_steps", "courant", "-",
             "C in dt = C min(s / (c + w), sqrt(s / |a|)), w the fastest closing speed of a neighbour", &s.courant, Range{0, 1, true, false});
   table.add("time_steps", "cells_per_step", "-", "a particle's step crosses at most this many DEM cells",

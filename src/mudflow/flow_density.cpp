@@ -12,12 +12,16 @@
 
 namespace talus {
 
-double smoothing_radius(const ParticleSet& particles, std::size_t i) {
-  const double radius = particles.radius[i];
+double natural_smoothing_radius(const ParticleSet& particles, std::size_t i) {
   const double sigma = particles.density[i];
-  if (!(sigma > 0.0)) return radius;
-  const double spread = kSupportPerSpacing * std::sqrt(particles.mass[i] / sigma);
-  return std::clamp(spread, radius, kLargestSmoothingGrowth * radius);
+  if (!(sigma > 0.0)) return particles.radius[i];
+  return kSupportPerSpacing * std::sqrt(particles.mass[i] / sigma);
+}
+
+double smoothing_radius(const ParticleSet& particles, std::size_t i, double smallest) {
+  const double radius = particles.radius[i];
+  return std::clamp(natural_smoothing_radius(particles, i), std::min(radius, smallest),
+                    kLargestSmoothingGrowth * radius);
 }
 
 // The pairs in the search's order, in two loops: the kernels of every pair, in one loop the

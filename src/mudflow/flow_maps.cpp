@@ -28,12 +28,14 @@ bool node_range(double low, double high, int count, int& first, int& last) {
 }  // namespace
 
 // Empty layers (0, nodata off the valid area) and cos(theta) per cell, computed once.
-FlowMaps::FlowMaps(const GroundModel& ground, double mud_density, double arrival_depth, bool with_erosion)
+FlowMaps::FlowMaps(const GroundModel& ground, double mud_density, double arrival_depth, bool with_erosion,
+                   double smallest_smoothing)
     : ground_(ground),
       mud_density_(mud_density),
       arrival_depth_(arrival_depth),
       min_spreading_radius_(kSpreadingRadiusPerCell * std::max(std::abs(ground.spec().geotransform[1]),
-                                                              std::abs(ground.spec().geotransform[5]))) {
+                                                              std::abs(ground.spec().geotransform[5]))),
+      smallest_smoothing_(smallest_smoothing) {
   const Grid<double>& dem = ground.elevation_grid();
   const GridSpec& spec = dem.spec();
   Grid<float> empty(spec, 0.0f);
@@ -99,7 +101,8 @@ void FlowMaps::spread(const ParticleSet& particles, std::size_t i, bool with_spe
   const double volume = particles.mass[i] / mud_density_;
   const double depth_per_weight = volume / ground_.spec().cell_area();  // m
   const double speed = with_speed ? particles.velocity(i).norm() : 0.0;  // m/s
-  find_footprint(particles.x[i], particles.y[i], std::max(smoothing_radius(particles, i), min_spreading_radius_));
+  find_footprint(particles.x[i], particles.y[i],
+                 std::max(smoothing_radius(particles, i, smallest_smoothing_), min_spreading_radius_));
   for (const CellShare& share : footprint_) {
     const double depth = depth_per_weight * share.weight * cos_slope_[share.cell];
     if (!(depth > 0.0)) continue;

@@ -139,7 +139,10 @@ class MudflowRun {
         criteria_{settings.courant, settings.rheology.internal_viscosity,
                   std::min(ground.spec().cell_width(), ground.spec().cell_height()), settings.cells_per_step},
         largest_cell_(std::max(ground.spec().cell_width(), ground.spec().cell_height())),
-        maps_(ground, settings.mud_density, settings.arrival_depth, erodible != nullptr),
+        smallest_smoothing_(settings.adaptive && settings.crowded_merge > 0
+                                ? settings.particle_size * kSupportPerSpacing
+                                : std::numeric_limits<double>::infinity()),
+        maps_(ground, settings.mud_density, settings.arrival_depth, erodible != nullptr, smallest_smoothing_),
         loops_(settings.parallel_check_period) {
     ReleaseLayout layout;
     layout.spacing = settings.particle_size * (settings.adaptive ? std::ldexp(1.0, settings.coarse_levels) : 1.0);
@@ -218,6 +221,9 @@ class MudflowRun {
   const FlowForceConstants forces_;
   const StepCriteria criteria_;
   const double largest_cell_;    // m: the DEM's larger cell side; the curvature spans at least one
+  // m: the least smoothing radius (flow_density.hpp): the finest particles' support radius with
+  // crowded fusion, else infinite (each particle's own support radius).
+  const double smallest_smoothing_;
 
   ParticleSet p_;
   PairSearch pairs_;  // the sums' pairs, with the smoothing radii; the adaptivity's, with the support radii
@@ -280,7 +286,7 @@ void MudflowRun::refresh() {
 
 // Smoothing radii of every particle from its stored density, after the particles were reordered.
 void MudflowRun::reset_smoothing() {
-  for (std::size_t i = 0; i < p_.size(); ++i) smoothing_[i] = smoothing_radius(p_, i);
+  for (std::size_t i = 0; i < p_.size(); ++i) smoothing_[i] = smoothing_radius(p_, i, smallest_smoothing_);
 }
 
 void MudflowRun::place_all_on_ground() {
@@ -288,7 +294,7 @@ void MudflowRun::place_all_on_ground() {
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<std::uint32_t>(i);
   for_each_listed(all, [&](std::size_t i) {
     place_on_ground(ground_, p_, i, normals_);
-    smoothing_[i] = smoothing_radius(p_, i);
+    smoothing_[i] = smoothing_radius(p_, i, smallest_smoothing_);
   });
 }
 
@@ -329,7 +335,7 @@ void MudflowRun::evaluate(const std::vector<std::uint32_t>& list) {
 void MudflowRun::update_density(std::size_t i) {
   const double sigma = gather_density(p_, pairs_, i, smoothing_[i], neighbours_[i]);
   set_column_state(p_, i, sigma, normals_.z[i], column_);
-  smoothing_[i] = smoothing_radius(p_, i);
+  smoothing_[i] = smoothing_radius(p_, i, smallest_smoothing_);
 }
 
 // Paper 4.1: the forces on flowing particle i, its basal resistance and the level it wants.
@@ -548,10 +554,15 @@ bool MudflowRun::adapt() {
     return count;
   };
   rebuild_pairs(p_.radius, p_.size());
-  const FissionRule fission{s_.split_threshold, s_.particle_size};
+  // Crowded fusion (section 8 of docs/mudflow.md): groups merge while the merged particle sums
+  // over at most crowded_merge finest support radii, with half the split threshold as their
+  // contrast threshold (hysteresis); a particle held at the finest radius does not split.
+  const bool crowded = std::isfinite(smallest_smoothing_);
+  const FissionRule fission{s_.split_threshold, s_.particle_size, crowded ? smallest_smoothing_ : 0.0};
   const std::size_t split = conserve([&] { return split_particles(p_, pairs_, ground_, fission); });
   rebuild_pairs(p_.radius, p_.size());
-  const FusionRule fusion{s_.merge_threshold, s_.merge_speed, s_.particle_size * std::ldexp(1.0, s_.coarse_levels)};
+  const FusionRule fusion{s_.merge_threshold, s_.merge_speed, s_.particle_size * std::ldexp(1.0, s_.coarse_levels),
+                          crowded ? s_.crowded_merge * smallest_smoothing_ : 0.0, 0.5 * s_.split_threshold};
   const std::size_t merged = conserve([&] { return merge_particles(p_, pairs_, ground_, fusion); });
   splits_ += split;
   merges_ += merged;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "talus/mudflow/flow_density.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 
 namespace talus {
@@ -86,6 +87,7 @@ std::size_t split_particles(ParticleSet& particles, const PairSearch& search, co
     if (particles.state[i] != ParticleState::flowing || !(contrast[i] > rule.threshold)) continue;
     const double spacing = particles.radius[i] / kSupportPerSpacing;  // m
     if (0.5 * spacing < rule.smallest_spacing * (1 - kSpacingTolerance)) continue;
+    if (natural_smoothing_radius(particles, i) <= rule.smoothing_floor) continue;
     std::array<std::array<double, 2>, 4> child_xy{};  // m
     bool on_ground = true;
     for (std::size_t c = 0; c < 4; ++c) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "talus/mudflow/flow_density.hpp"
 #include "talus/mudflow/particle_fission.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 
@@ -65,8 +66,19 @@ bool nearest_group(const ParticleSet& particles, const PairSearch& search, const
   return true;
 }
 
+// Whether the merged particle of `group` would sum over at most rule.crowded_radius: twice each
+// member's natural smoothing radius, as four times the mass at the same density doubles it.
+bool crowded(const ParticleSet& particles, const FusionRule& rule, const Group& group) {
+  if (!(rule.crowded_radius > 0)) return false;
+  for (std::uint32_t k : group) {
+    if (2 * natural_smoothing_radius(particles, k) > rule.crowded_radius) return false;
+  }
+  return true;
+}
+
 // Paper 4.2, fig. 8b, the fusion criterion: the group is calm (every pressure contrast below the
-// threshold, every velocity within speed_difference of the mean), compact (every member within
+// threshold, every velocity within speed_difference of the mean) or crowded (FusionRule: its
+// own threshold, and speeds within a fraction of the group's), compact (every member within
 // one spacing of the centre of mass), nearly round (eigenvalues of the mass-weighted spread of
 // positions within kRoundness of each other), on the ground, and its merged spacing within
 // largest_spacing. Fills `merged` and returns true when all hold.
@@ -75,10 +87,12 @@ bool merge_allowed(const ParticleSet& particles, const GroundModel& ground, cons
   const std::uint32_t first = group[0];
   const double spacing = particles.radius[first] / kSupportPerSpacing;  // m
   if (2 * spacing > rule.largest_spacing * (1 + kSizeTolerance)) return false;
+  const bool is_crowded = crowded(particles, rule, group);
+  const double threshold = is_crowded ? rule.crowded_threshold : rule.threshold;  // -
   double mass = 0, offset_x = 0, offset_y = 0;  // kg, kg m, kg m: offsets from the first member
   Eigen::Vector3d momentum = Eigen::Vector3d::Zero();  // kg m/s
   for (std::uint32_t k : group) {
-    if (!(contrast[k] < rule.threshold)) return false;
+    if (!(contrast[k] < threshold)) return false;
     mass += particles.mass[k];
     offset_x += particles.mass[k] * (particles.x[k] - particles.x[first]);
     offset_y += particles.mass[k] * (particles.y[k] - particles.y[first]);
@@ -86,9 +100,11 @@ bool merge_allowed(const ParticleSet& particles, const GroundModel& ground, cons
   }
   const double centre_dx = offset_x / mass, centre_dy = offset_y / mass;  // m, from the first member
   const Eigen::Vector3d velocity = momentum / mass;                      // m/s
+  const double speed_tolerance =                                         // m/s
+      is_crowded ? std::max(rule.speed_difference, kCrowdedSpeedFraction * velocity.norm()) : rule.speed_difference;
   double spread_xx = 0, spread_yy = 0, spread_xy = 0;                    // m2
   for (std::uint32_t k : group) {
-    if ((particles.velocity(k) - velocity).norm() > rule.speed_difference) return false;
+    if ((particles.velocity(k) - velocity).norm() > speed_tolerance) return false;
     const double dx = particles.x[k] - particles.x[first] - centre_dx;
     const double dy = particles.y[k] - particles.y[first] - centre_dy;
     if (std::hypot(dx, dy) > spacing * (1 + kSizeTolerance)) return false;

@@ -63,6 +63,25 @@ TEST(MudflowThreadDeterminism, AdaptiveRun) {
   expect_identical(one, two);
 }
 
+// Crowded fusion (docs/mudflow.md section 8) merges groups in the parallel adaptivity pass and
+// lowers the coarse particles' smoothing radii to the finest support radius: the layers stay the
+// same at 1 and 2 threads over the first 12 s, as the mud piles up on the runout, and fusion and
+// fission conserve mass. (The chute's mud is too thin to crowd many particles: avaAlr's case
+// test measures what the option merges.)
+TEST(MudflowThreadDeterminism, AdaptiveRunWithCrowdedFusion) {
+  const mudflow_scenes::Chute chute;
+  MudflowSettings crowded_one = first_seconds(true, 1);
+  crowded_one.duration = 12.0;
+  crowded_one.crowded_merge = 1.5;
+  MudflowSettings crowded_two = crowded_one;
+  crowded_two.threads = 2;
+  const MudflowResult one = run_mudflow(chute.ground_model, chute.release_set, &chute.erodible, crowded_one, nullptr);
+  const MudflowResult two = run_mudflow(chute.ground_model, chute.release_set, &chute.erodible, crowded_two, nullptr);
+  EXPECT_GT(one.merges, 0u);
+  EXPECT_LE(one.adaptivity_mass_change, 1e-15);
+  expect_identical(one, two);
+}
+
 // The timed trials of one thread against two (parallel_loop_choice.hpp) switch the loops between
 // one and two threads from one coarse step to the next: the layers stay those of one thread. A
 // period of 3 coarse steps makes the 8 coarse steps switch several times.

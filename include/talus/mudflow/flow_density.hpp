@@ -9,7 +9,9 @@
 // thinning front cannot get thinner than that, moves as a bore and lags (shallow-water SPH uses
 // a radius that follows the density: Rodriguez-Paz & Bonet 2005, Vacondio et al. 2012). So each
 // particle sums with a smoothing radius R_s = 2.4 sqrt(m / sigma) from its latest density (its
-// spacing), never below its size's support radius R and at most kLargestSmoothingGrowth R.
+// spacing), never below its size's support radius R and at most kLargestSmoothingGrowth R. With
+// crowded fusion (particle_fusion.hpp) the lower bound is the finest particles' support radius
+// instead, so a coarse particle in deep mud sums over the radius its density asks for.
 //
 // Pairs. i and j interact when r < max(R_s,i, R_s,j), with the kernel averaged over both radii,
 // W_ij = (W(r, R_s,i) + W(r, R_s,j)) / 2, so pair forces are equal and opposite. PairSearch finds
@@ -18,6 +20,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "talus/mudflow/pair_search.hpp"
@@ -41,9 +44,15 @@ struct ColumnConstants {
   double gravity = 9.81;      // m/s2
 };
 
-// R_s (m) of particle i from its latest density: 2.4 sqrt(m / sigma) within
-// [R, kLargestSmoothingGrowth R]; R where it has no density yet.
-double smoothing_radius(const ParticleSet& particles, std::size_t i);
+// 2.4 sqrt(m / sigma) (m): the radius over which particle i would sum about 18 neighbours at its
+// latest density, before any bound; R where it has no density yet.
+double natural_smoothing_radius(const ParticleSet& particles, std::size_t i);
+
+// R_s (m) of particle i: natural_smoothing_radius within [min(R, smallest), kLargestSmoothingGrowth
+// R]. `smallest` (m) is the least radius any particle may sum over: infinite keeps each particle
+// at its own size's R at least (the default); crowded fusion passes the finest particles' R.
+double smoothing_radius(const ParticleSet& particles, std::size_t i,
+                        double smallest = std::numeric_limits<double>::infinity());
 
 // The SPH sum of particle i, of smoothing radius `smoothing` R_s,i (m), over its pairs, its own
 // term m_i W(0, R_s,i) included: lists the pairs (i excluded) in the search's order and returns

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -38,8 +39,10 @@ class FlowMaps {
  public:
   // Grids on the ground model's DEM grid; nodata outside its valid area (invalid DEM nodes), 0
   // elsewhere. mud_density rho0 (kg/m3); arrival_depth (m): a cell is reached when its flow
-  // depth first exceeds it.
-  FlowMaps(const GroundModel& ground, double mud_density, double arrival_depth, bool with_erosion);
+  // depth first exceeds it. smallest_smoothing (m): the least smoothing radius of the run's
+  // particles (flow_density.hpp), so the layers spread each particle as the dynamics sum it.
+  FlowMaps(const GroundModel& ground, double mud_density, double arrival_depth, bool with_erosion,
+           double smallest_smoothing = std::numeric_limits<double>::infinity());
 
   // Samples the flow at `time` (s): depth and depth-weighted speed per cell from the flowing
   // particles, then the maxima and arrival times.
@@ -70,6 +73,7 @@ class FlowMaps {
   const GroundModel& ground_;
   double mud_density_, arrival_depth_;
   double min_spreading_radius_;             // m: kSpreadingRadiusPerCell x the larger cell side
+  double smallest_smoothing_;               // m: the particles' least smoothing radius
   FlowLayers layers_;
   std::vector<double> cos_slope_;           // - : cos(theta) of the ground at each cell centre
   std::vector<char> reached_;               // 1 once a cell's depth exceeded arrival_depth

@@ -50,6 +50,8 @@ struct MudflowSettings {
   double split_threshold = 0.5;     // split when size x |grad P| / P exceeds this (-)
   double merge_threshold = 0.1;     // a calm group merges when every member's size x |grad P| / P is below this (-)
   double merge_speed = 0.5;         // and its members' velocities differ by less than this (m/s)
+  double crowded_merge = 0;         // > 0: crowded groups merge while the merged particle sums over at most this many
+                                    // finest support radii (-; docs/mudflow.md section 8); 0: off
   // Time steps (paper 4.2; Courant condition).
   double courant = 0.3;             // C in dt = C min(s / (c + w), sqrt(s / |a|)), w the neighbours' closing speed (-)
   double cells_per_step = 0.5;      // a step crosses at most this many DEM cells (-)

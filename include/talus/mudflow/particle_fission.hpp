@@ -29,6 +29,10 @@ std::vector<double> pressure_contrasts(const ParticleSet& particles, const PairS
 struct FissionRule {
   double threshold = 0.5;        // split when pressure_contrast exceeds this (-)
   double smallest_spacing = 2.5; // m: the finest spacing; no split makes children finer than this
+  // m: with crowded fusion, the least smoothing radius (the finest particles' support radius): a
+  // particle whose natural_smoothing_radius is at most this does not split, as its children
+  // would all sum over this same radius and resolve nothing finer; 0: no such particle.
+  double smoothing_floor = 0;
 };
 
 // Splits every flowing particle that the rule selects (decided on the state before any split,
@@ -37,9 +41,9 @@ struct FissionRule {
 // (x +- s / 4, y +- s / 4), each of mass m / 4 (exact in binary floating point). Children stand
 // on the ground (z from the ground model) and keep the parent's velocity, acceleration, density,
 // depth, pressure, level and still time; a particle whose children would leave the ground
-// model's valid area does not split. `search` holds the particles as they are at the call,
-// with their support radii; the caller rebuilds it afterwards. Returns the number of particles
-// split.
+// model's valid area, or that the rule's smoothing floor holds, does not split. `search` holds
+// the particles as they are at the call, with their support radii; the caller rebuilds it
+// afterwards. Returns the number of particles split.
 std::size_t split_particles(ParticleSet& particles, const PairSearch& search, const GroundModel& ground,
                             const FissionRule& rule);
 

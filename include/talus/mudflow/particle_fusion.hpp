@@ -17,7 +17,17 @@ struct FusionRule {
   double threshold = 0.1;         // every member's pressure_contrast below this (-)
   double speed_difference = 0.5;  // members' velocities within this of the group's mean (m/s)
   double largest_spacing = 10;    // m: merged particles never exceed this spacing
+  // Crowded fusion (docs/mudflow.md section 8), off at 0: a group is crowded when twice each
+  // member's natural_smoothing_radius, the radius the merged particle would sum over, is at
+  // most crowded_radius (m). A crowded group merges when its members' pressure_contrast is below
+  // crowded_threshold (-) and their velocities are within the larger of speed_difference and
+  // kCrowdedSpeedFraction of the group's speed of its mean velocity.
+  double crowded_radius = 0;
+  double crowded_threshold = 0.25;
 };
+
+// Crowded groups: members' velocities within this fraction of the group's speed (-).
+inline constexpr double kCrowdedSpeedFraction = 0.1;
 
 // Merges calm groups, chosen greedily in index order on the state at the call (each particle in
 // one group at most; the group of i is i and its three nearest flowing neighbours of the same
@@ -31,7 +41,8 @@ struct FusionRule {
 // mass-weighted mean acceleration, density, depth and pressure (until the caller recomputes
 // them). It takes the place of the group's lowest index; the others are removed. `search` holds
 // the particles as they are at the call, with their support radii; the caller rebuilds it
-// afterwards. Returns the number of merges.
+// afterwards. A crowded group (rule.crowded_radius) passes with its own contrast threshold and
+// speed tolerance instead of the calm ones. Returns the number of merges.
 std::size_t merge_particles(ParticleSet& particles, const PairSearch& search, const GroundModel& ground,
                             const FusionRule& rule);
 

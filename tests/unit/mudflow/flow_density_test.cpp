@@ -73,6 +73,23 @@ TEST(FlowDensity, SmoothingRadiusFollowsTheDensityWithinItsBounds) {
   EXPECT_EQ(smoothing_radius(p, 0), kLargestSmoothingGrowth);
 }
 
+// Crowded fusion's floor (docs/mudflow.md section 8): a particle of support radius 2 m in mud
+// four times as dense as its spacing holds sums over 1 m (2.4 sqrt(m / sigma)) when the floor
+// allows it, over the floor when that is larger, and never over less than its own R without one.
+TEST(FlowDensity, SmoothingRadiusFloorIsTheSmallestRadiusGiven) {
+  ParticleSet p;
+  p.add(100.0, {0, 0, 0}, {0, 0, 0}, 2.0);
+  const double spacing = 2.0 / kSupportPerSpacing;       // m
+  p.density[0] = 4.0 * 100.0 / (spacing * spacing);      // kg/m2: natural radius 1 m
+  EXPECT_NEAR(natural_smoothing_radius(p, 0), 1.0, 1e-12);
+  EXPECT_EQ(smoothing_radius(p, 0), 2.0);                // no floor given: its own R
+  EXPECT_NEAR(smoothing_radius(p, 0, 0.5), 1.0, 1e-12);  // floor below: the natural radius
+  EXPECT_EQ(smoothing_radius(p, 0, 1.25), 1.25);         // floor above it: the floor
+  EXPECT_EQ(smoothing_radius(p, 0, 3.0), 2.0);           // a floor above R is R
+  p.density[0] = 1e-6;                                   // thin: still at most kLargestSmoothingGrowth R
+  EXPECT_EQ(smoothing_radius(p, 0, 0.5), 2.0 * kLargestSmoothingGrowth);
+}
+
 TEST(FlowDensity, PairsAreTheBruteForcePairsWithSymmetricKernels) {
   // A cloud of columns of varied mass and density, so the smoothing radii range over [R, 4 R].
   std::mt19937 generator(3);

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "adaptivity_fixtures.hpp"
+#include "talus/mudflow/flow_density.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
 
 namespace talus {
@@ -160,6 +161,20 @@ TEST(ParticleFission, NoSplitBelowTheSmallestSpacing) {
     EXPECT_EQ(split_particles(particles, search, ground, rule), 1u);
     EXPECT_NEAR(particles.radius[0] / kSupportPerSpacing, 4.0, 1e-12);
   }
+}
+
+// Crowded fusion's floor (docs/mudflow.md section 8): a particle whose natural smoothing radius is
+// at most the floor would give four children all summed over the floor: it does not split.
+TEST(ParticleFission, NoSplitOfAParticleHeldAtTheSmoothingFloor) {
+  const GroundModel ground = plane_ground();
+  ParticleSet particles = pressure_step_pair(ground, 8.0);
+  const double natural = natural_smoothing_radius(particles, 0);  // m
+  const PairSearch search = binned(particles);
+  ASSERT_GT(pressure_contrast(particles, search, 0), 0.5);
+  EXPECT_EQ(split_particles(particles, search, ground, FissionRule{0.5, 4.0, natural}), 0u);
+  EXPECT_EQ(particles.size(), 2u);
+  // A floor just below its natural radius: it splits.
+  EXPECT_EQ(split_particles(particles, search, ground, FissionRule{0.5, 4.0, 0.999 * natural}), 1u);
 }
 
 TEST(ParticleFission, NoSplitWhenAChildWouldLeaveTheGround) {

@@ -112,6 +112,69 @@ TEST(ParticleFusion, GroupWithAPressureContrastDoesNotMerge) {
   EXPECT_EQ(particles.size(), 4u);
 }
 
+// Crowded fusion (docs/mudflow.md section 8): the square group at 30 m/s in mud five times as
+// dense as its spacing holds (natural smoothing radius 9.6 / sqrt(5) = 4.3 m, so the merged
+// particle would sum over 8.6 m, within a crowded_radius of the members' R, 9.6 m).
+FusionRule crowded_rule() {
+  FusionRule rule;
+  rule.crowded_radius = radius_of_spacing(kSquareSpacing);
+  return rule;
+}
+
+// The group with member 2 faster by `faster` (m/s) along x.
+ParticleSet fast_crowded_square(const GroundModel& ground, double faster) {
+  ParticleSet particles = square_group(ground);
+  for (std::size_t i = 0; i < 4; ++i) {
+    particles.vx[i] = 30.0;
+    particles.vy[i] = 0.0;
+    particles.vz[i] = 0.0;
+    particles.density[i] = 5.0 * particles.mass[i] / (kSquareSpacing * kSquareSpacing);
+  }
+  particles.vx[2] += faster;
+  return particles;
+}
+
+TEST(ParticleFusion, CrowdedGroupMergesWithinATenthOfItsSpeed) {
+  const GroundModel ground = plane_ground();
+  // 5 m/s faster: 3.75 m/s from the mean of 31.25 m/s, beyond 0.1 x 31.25 m/s.
+  ParticleSet particles = fast_crowded_square(ground, 5.0);
+  EXPECT_EQ(merge_particles(particles, binned(particles), ground, crowded_rule()), 0u);
+  // 4 m/s faster: 3 m/s from the mean of 31 m/s, within 0.1 x 31 = 3.1 m/s but not 0.5 m/s.
+  particles = fast_crowded_square(ground, 4.0);
+  EXPECT_EQ(merge_particles(particles, binned(particles), ground, FusionRule{}), 0u);  // crowded fusion off
+  EXPECT_EQ(merge_particles(particles, binned(particles), ground, crowded_rule()), 1u);
+  ASSERT_EQ(particles.size(), 1u);
+  // Momentum kept: 31 m/s to 1e-12 m/s.
+  EXPECT_NEAR(particles.vx[0], 31.0, 1e-12);
+}
+
+TEST(ParticleFusion, GroupAsDenseAsItsSpacingIsNotCrowded) {
+  const GroundModel ground = plane_ground();
+  ParticleSet particles = fast_crowded_square(ground, 4.0);
+  // Twice as dense as its spacing: natural radius 9.6 / sqrt(2) = 6.8 m, merged 13.6 m > 9.6 m.
+  for (std::size_t i = 0; i < 4; ++i) particles.density[i] *= 2.0 / 5.0;
+  const PairSearch search = binned(particles);
+  EXPECT_EQ(merge_particles(particles, search, ground, crowded_rule()), 0u);
+}
+
+// A crowded group merges with a pressure contrast between the calm threshold (0.1) and its own
+// (0.25), and not above its own.
+TEST(ParticleFusion, CrowdedGroupHasItsOwnContrastThreshold) {
+  const GroundModel ground = plane_ground();
+  ParticleSet particles = fast_crowded_square(ground, 0.0);
+  particles.pressure[3] = 22000.0;  // Pa, against 20000 for the others
+  const PairSearch search = binned(particles);
+  double largest = 0;
+  for (std::size_t i = 0; i < 4; ++i) largest = std::max(largest, pressure_contrast(particles, search, i));
+  ASSERT_GT(largest, FusionRule{}.threshold);
+  ASSERT_LT(largest, FusionRule{}.crowded_threshold);
+  EXPECT_EQ(merge_particles(particles, search, ground, FusionRule{}), 0u);
+  FusionRule strict = crowded_rule();
+  strict.crowded_threshold = 0.9 * largest;
+  EXPECT_EQ(merge_particles(particles, search, ground, strict), 0u);
+  EXPECT_EQ(merge_particles(particles, search, ground, crowded_rule()), 1u);
+}
+
 TEST(ParticleFusion, LineOfFourDoesNotMerge) {
   const GroundModel ground = plane_ground();
   ParticleSet particles;
