@@ -2,8 +2,11 @@
 // "Forces").
 #include "talus/mudflow/flow_forces.hpp"
 
+#include <algorithm>
+
 #include "talus/core/errors.hpp"
 #include "talus/mudflow/smoothing_kernel.hpp"
+#include "talus/mudflow/time_levels.hpp"
 
 namespace talus {
 namespace {
@@ -30,8 +33,8 @@ double pressure_slope_factor(PressureColumn column, double cos_slope) {
 // column): with Pi proportional to sigma^2 the pressure term needs only the neighbours'
 // positions and slopes, never their densities, so it is exact for particles whose neighbours are
 // between their own steps.
-Eigen::Vector3d flow_acceleration(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours,
-                                  const FootNormals& normals, const FlowForceConstants& constants) {
+FlowAcceleration flow_acceleration(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours,
+                                   const FootNormals& normals, const FlowForceConstants& constants) {
   const double xi = particles.x[i], yi = particles.y[i];
   const double vxi = particles.vx[i], vyi = particles.vy[i], vzi = particles.vz[i];
   const double sigma_i = particles.density[i];
@@ -52,9 +55,12 @@ Eigen::Vector3d flow_acceleration(const ParticleSet& particles, std::size_t i, c
 
   double px = 0, py = 0;            // pressure (m/s2, horizontal)
   double fx = 0, fy = 0, fz = 0;    // viscosity (m/s2)
+  double closing = 0;               // m/s
   for (const NeighbourPair& pair : neighbours) {
     const std::size_t j = pair.index;
     const double dx = xi - x[j], dy = yi - y[j];
+    const double dvx = vxi - vx[j], dvy = vyi - vy[j];
+    closing = std::max(closing, approach_speed(dx, dy, dvx, dvy));
     const double factor_j = pressure_slope_factor(constants.pressure, cos_slope[j]);
     const double push = mass[j] * pressure_scale * (factor_i + factor_j) * pair.gradient_factor;
     px -= push * dx;
@@ -66,13 +72,13 @@ Eigen::Vector3d flow_acceleration(const ParticleSet& particles, std::size_t i, c
       const double softening = softening_scale * mean_radius * mean_radius;
       const double drag = mass[j] * nu * (sigma_i + sigma_j) / (sigma_i * sigma_j) * pair.gradient_factor * r2 /
                           (r2 + softening);
-      fx += drag * (vxi - vx[j]);
-      fy += drag * (vyi - vy[j]);
+      fx += drag * dvx;
+      fy += drag * dvy;
       fz += drag * (vzi - vz[j]);
     }
   }
   const Eigen::Vector3d total(px + fx, py + fy, fz - constants.gravity);
-  return tangent_part(total, normals.at(i));
+  return {tangent_part(total, normals.at(i)), closing};
 }
 
 }  // namespace talus

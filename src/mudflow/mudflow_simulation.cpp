@@ -196,7 +196,7 @@ class MudflowRun {
   void update_density(std::size_t i);
   void update_forces(std::size_t i);
   void evaluate_all();
-  int wanted_level(std::size_t i) const;
+  int wanted_level(std::size_t i, double closing) const;
   void kick(std::size_t i, double duration);
   void close_steps(const std::vector<std::uint32_t>& list);
   void open_steps(const std::vector<std::uint32_t>& list, std::uint64_t tick);
@@ -342,7 +342,8 @@ void MudflowRun::update_density(std::size_t i) {
 void MudflowRun::update_forces(std::size_t i) {
   if (p_.state[i] != ParticleState::flowing) return;
   const double g = s_.gravity;
-  const Eigen::Vector3d a = flow_acceleration(p_, i, neighbours_[i], normals_, forces_);
+  const FlowAcceleration forces = flow_acceleration(p_, i, neighbours_[i], normals_, forces_);
+  const Eigen::Vector3d& a = forces.acceleration;
   p_.ax[i] = a.x();
   p_.ay[i] = a.y();
   p_.az[i] = a.z();
@@ -362,7 +363,7 @@ void MudflowRun::update_forces(std::size_t i) {
   contact.normal_acceleration = normal_acceleration;
   contact.vegetation_deperdition = ground_.material_field(&GroundMaterial::vegetation_deperdition, square);
   resistance_[i] = basal_resistance(s_.rheology, contact, s_.mud_density, g);
-  wanted_[i] = static_cast<std::uint8_t>(wanted_level(i));
+  wanted_[i] = static_cast<std::uint8_t>(wanted_level(i, forces.closing_speed));
 }
 
 void MudflowRun::evaluate_all() {
@@ -374,9 +375,10 @@ void MudflowRun::evaluate_all() {
   evaluate(list);
 }
 
-// Paper 4.2: the level of the step the particle's size, the Courant condition and its
-// acceleration allow, made deeper by the guard's retries.
-int MudflowRun::wanted_level(std::size_t i) const {
+// Paper 4.2: the level of the step the particle's size, the Courant condition (with `closing`,
+// the speed at which its neighbours close in, m/s) and its acceleration allow, made deeper by the
+// guard's retries.
+int MudflowRun::wanted_level(std::size_t i, double closing) const {
   if (s_.unguarded_step > 0) return depth_;
   const double spacing = smoothing_[i] / kSupportPerSpacing;
   // The pressure's wave speed sqrt(dPi/dsigma): sqrt(g cos(theta) h) for the thin-layer pressure,
@@ -385,7 +387,6 @@ int MudflowRun::wanted_level(std::size_t i) const {
   const double wave_speed = s_.pressure == PressureColumn::normal ? std::sqrt(s_.gravity * cos_slope * p_.depth[i])
                                                                   : std::sqrt(s_.gravity * p_.depth[i] / cos_slope);
   const double acceleration = std::sqrt(p_.ax[i] * p_.ax[i] + p_.ay[i] * p_.ay[i] + p_.az[i] * p_.az[i]);
-  const double closing = closing_speed(p_, i, neighbours_[i]);
   const double step = stable_step(spacing, wave_speed, closing, p_.velocity(i).norm(), acceleration, criteria_);
   return level_for_step(step, coarse_step_, s_.deepest_level) + depth_;
 }

@@ -14,25 +14,6 @@ constexpr double kViscousStepFactor = 0.125;
 
 }  // namespace
 
-double closing_speed(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours) {
-  const double xi = particles.x[i], yi = particles.y[i];
-  const double vxi = particles.vx[i], vyi = particles.vy[i];
-  const double* x = particles.x.data();
-  const double* y = particles.y.data();
-  const double* vx = particles.vx.data();
-  const double* vy = particles.vy.data();
-  double fastest = 0.0;
-  for (const NeighbourPair& pair : neighbours) {
-    const std::size_t j = pair.index;
-    const double dx = xi - x[j], dy = yi - y[j];
-    const double distance = std::sqrt(dx * dx + dy * dy);
-    if (!(distance > 0.0)) continue;
-    const double approach = -((vxi - vx[j]) * dx + (vyi - vy[j]) * dy) / distance;
-    fastest = std::max(fastest, approach);
-  }
-  return fastest;
-}
-
 // Paper 4.2's "Courant condition" in the Galilean-invariant form of SPH (Monaghan 1997): the
 // signal a particle must not outrun within its spacing travels at c + w relative to the
 // particle, whatever the flow's own speed; the ground limit keeps the particle's path on every

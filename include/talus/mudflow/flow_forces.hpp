@@ -48,9 +48,16 @@ struct FlowForceConstants {
 // for the vertical column's (-).
 double pressure_slope_factor(PressureColumn column, double cos_slope);
 
-// Pressure, internal friction and gravity on particle i (m/s2), tangent to the ground at its
-// foot, from its neighbour list (compute_density) and every particle's foot normal.
-Eigen::Vector3d flow_acceleration(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours,
-                                  const FootNormals& normals, const FlowForceConstants& constants);
+// What one pass over a particle's neighbour list gives.
+struct FlowAcceleration {
+  Eigen::Vector3d acceleration;  // m/s2: pressure, internal friction and gravity, tangent to the ground
+  double closing_speed = 0;      // m/s: the fastest approach_speed of a neighbour, at least 0 (time_levels.hpp)
+};
+
+// Pressure, internal friction and gravity on particle i, tangent to the ground at its foot, from
+// its neighbour list (gather_density) and every particle's foot normal; the same pass measures how
+// fast its neighbours close in, for its time step.
+FlowAcceleration flow_acceleration(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours,
+                                   const FootNormals& normals, const FlowForceConstants& constants);
 
 }  // namespace talus

@@ -6,6 +6,7 @@
 // multiple of that step, so every step starts and ends on the grid of its level.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "talus/mudflow/flow_density.hpp"
@@ -23,11 +24,16 @@ struct StepCriteria {
   double cells_per_step = 0.5;      // a step crosses at most this many DEM cells (-)
 };
 
-// The fastest rate (m/s) at which one of particle i's neighbours closes in on it,
-// max_j max(0, -(u_i - u_j) . (x_i - x_j) / |x_i - x_j|) in the horizontal plane of the sums:
-// the relative part of the signal speed of Monaghan (1997), which leaves the step independent
-// of the flow's own speed.
-double closing_speed(const ParticleSet& particles, std::size_t i, const NeighbourList& neighbours);
+// How fast a neighbour closes in on a particle (m/s): -(u_i - u_j) . (x_i - x_j) / |x_i - x_j| in
+// the horizontal plane of the sums, from dx = x_i - x_j and dv = u_i - u_j; negative when it
+// recedes, 0 when the two feet meet. The fastest over the neighbours, at least 0, is w, the
+// relative part of the signal speed of Monaghan (1997), which leaves the step independent of the
+// flow's own speed; the forces' pass measures it (flow_forces.hpp).
+inline double approach_speed(double dx, double dy, double dvx, double dvy) {
+  const double distance = std::sqrt(dx * dx + dy * dy);
+  if (!(distance > 0.0)) return 0.0;
+  return -(dvx * dx + dvy * dy) / distance;
+}
 
 // The longest stable step (s) of a particle of spacing s (m) whose shallow-water wave speed is
 // c = sqrt(g cos(theta) h) (m/s), neighbours close in at w (m/s), speed is |u| (m/s) and

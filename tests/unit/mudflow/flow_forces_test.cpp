@@ -54,7 +54,7 @@ TEST(FlowForces, PressureOnADepthRampIsMinusGTimesTheSlopeOfTheSurface) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     const int a = static_cast<int>(i / 20), b = static_cast<int>(i % 20);
     if (std::min({a, b, 39 - a, 19 - b}) < 4) continue;
-    const Eigen::Vector3d acceleration = flow_acceleration(p, i, e.lists[i], e.normals, constants);
+    const Eigen::Vector3d acceleration = flow_acceleration(p, i, e.lists[i], e.normals, constants).acceleration;
     // 5%: the symmetric SPH gradient of a linear field over a square lattice at R = 2.4
     // spacings is 0.964 of the exact one (the lattice sum of x_j dW/dx s^2; 0.997 at R = 3).
     EXPECT_NEAR(acceleration.x(), -kG * slope, 0.05 * kG * slope) << i;
@@ -79,7 +79,7 @@ TEST(FlowForces, PressureAndViscosityConserveMomentum) {
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   double scale = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const Eigen::Vector3d force = p.mass[i] * flow_acceleration(p, i, e.lists[i], e.normals, constants);
+    const Eigen::Vector3d force = p.mass[i] * flow_acceleration(p, i, e.lists[i], e.normals, constants).acceleration;
     total += force;
     scale = std::max(scale, force.norm());
   }
@@ -95,8 +95,8 @@ TEST(FlowForces, ViscosityDrawsVelocitiesTogether) {
   Evaluated e = evaluate(p);
   const FlowForceConstants viscous{kRho, kG, 0.5}, inviscid{kRho, kG, 0.0};
   for (std::size_t i = 0; i < 2; ++i) {
-    const Eigen::Vector3d friction = flow_acceleration(p, i, e.lists[i], e.normals, viscous) -
-                                     flow_acceleration(p, i, e.lists[i], e.normals, inviscid);
+    const Eigen::Vector3d friction = flow_acceleration(p, i, e.lists[i], e.normals, viscous).acceleration -
+                                     flow_acceleration(p, i, e.lists[i], e.normals, inviscid).acceleration;
     const Eigen::Vector3d relative = p.velocity(i) - p.velocity(1 - i);
     EXPECT_LT(friction.dot(relative), 0.0) << i;
     EXPECT_NEAR(friction.normalized().dot(-relative.normalized()), 1.0, 1e-12) << i;
@@ -114,7 +114,7 @@ TEST(FlowForces, GravityAloneIsItsTangentialPartOnASlope) {
   normals.x[0] = std::sin(theta);  // the ground falls towards +x
   normals.y[0] = 0.0;
   normals.z[0] = std::cos(theta);
-  const Eigen::Vector3d a = flow_acceleration(p, 0, {}, normals, {kRho, kG, 0.5});
+  const Eigen::Vector3d a = flow_acceleration(p, 0, {}, normals, {kRho, kG, 0.5}).acceleration;
   EXPECT_NEAR(a.norm(), kG * std::sin(theta), 1e-12);
   EXPECT_NEAR(a.dot(normals.at(0)), 0.0, 1e-12);
   EXPECT_GT(a.x(), 0.0);
@@ -145,12 +145,39 @@ TEST(FlowForces, TheVerticalColumnsPressurePushesOneOverCosSquaredHarderOnASlope
   for (std::size_t i = 0; i < p.size(); ++i) {
     const int a = static_cast<int>(i / 40), b = static_cast<int>(i % 40);
     if (std::min({a, b, 19 - a, 39 - b}) < 4) continue;
-    const double normal_y = flow_acceleration(p, i, e.lists[i], e.normals, thin_layer).y();
-    const double vertical_y = flow_acceleration(p, i, e.lists[i], e.normals, vertical).y();
+    const double normal_y = flow_acceleration(p, i, e.lists[i], e.normals, thin_layer).acceleration.y();
+    const double vertical_y = flow_acceleration(p, i, e.lists[i], e.normals, vertical).acceleration.y();
     EXPECT_NEAR(normal_y, -kG * cos2 * slope, 0.05 * kG * cos2 * slope) << i;
     EXPECT_NEAR(vertical_y, -kG * slope, 0.05 * kG * slope) << i;
     EXPECT_NEAR(vertical_y * cos2, normal_y, 1e-12 * kG * slope) << i;
   }
+}
+
+TEST(FlowForces, ClosingSpeedIsTheFastestApproachOfANeighbour) {
+  ParticleSet p;
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  p.add(1.0, zero, {10.0, 0.0, 0.0}, 1.0);
+  p.add(1.0, {2.0, 0.0, 0.0}, {7.0, 0.0, 0.0}, 1.0);    // ahead and slower: closes at 3 m/s
+  p.add(1.0, {-2.0, 0.0, 0.0}, {9.0, 0.0, 0.0}, 1.0);   // behind and slower: recedes
+  p.add(1.0, {0.0, 2.0, 0.0}, {10.0, -1.0, 0.0}, 1.0);  // beside, drawing near at 1 m/s
+  p.add(1.0, zero, {0.0, 0.0, 0.0}, 1.0);               // on the same spot: no direction
+  for (std::size_t i = 0; i < p.size(); ++i) p.density[i] = 1.0;
+  FootNormals normals;
+  normals.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) normals.z[i] = 1.0;
+  const FlowForceConstants constants{kRho, kG, 0.5};
+  const auto closing = [&](const NeighbourList& neighbours) {
+    return flow_acceleration(p, 0, neighbours, normals, constants).closing_speed;
+  };
+  EXPECT_DOUBLE_EQ(closing({{1, 0.0}, {2, 0.0}, {3, 0.0}, {4, 0.0}}), 3.0);
+  EXPECT_DOUBLE_EQ(closing({{3, 0.0}}), 1.0);
+  EXPECT_DOUBLE_EQ(closing({{2, 0.0}, {4, 0.0}}), 0.0);
+  // Moving together at any speed, nothing closes in.
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.vx[i] = 40.0;
+    p.vy[i] = 0.0;
+  }
+  EXPECT_DOUBLE_EQ(closing({{1, 0.0}, {2, 0.0}, {3, 0.0}}), 0.0);
 }
 
 TEST(FlowForces, PressureColumnsAreParsedByName) {

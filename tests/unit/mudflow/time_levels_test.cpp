@@ -35,24 +35,17 @@ TEST(TimeLevels, TheFlowsOwnSpeedLimitsTheStepOnlyThroughTheGround) {
   EXPECT_DOUBLE_EQ(stable_step(2.0, 3.0, 0.0, 10.0, 0.0, ground), 0.2);
 }
 
-TEST(TimeLevels, ClosingSpeedIsTheFastestApproachOfANeighbour) {
-  ParticleSet particles;
-  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  particles.add(1.0, zero, {10.0, 0.0, 0.0}, 1.0);
-  particles.add(1.0, {2.0, 0.0, 0.0}, {7.0, 0.0, 0.0}, 1.0);    // ahead and slower: closes at 3 m/s
-  particles.add(1.0, {-2.0, 0.0, 0.0}, {9.0, 0.0, 0.0}, 1.0);   // behind and slower: recedes
-  particles.add(1.0, {0.0, 2.0, 0.0}, {10.0, -1.0, 0.0}, 1.0);  // beside, drawing near at 1 m/s
-  NeighbourList neighbours{{1, 0.0}, {2, 0.0}, {3, 0.0}};
-  EXPECT_DOUBLE_EQ(closing_speed(particles, 0, neighbours), 3.0);
-  neighbours = {{2, 0.0}};
-  EXPECT_DOUBLE_EQ(closing_speed(particles, 0, neighbours), 0.0);
-  // Moving together at any speed, nothing closes in.
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    particles.vx[i] = 40.0;
-    particles.vy[i] = 0.0;
-  }
-  neighbours = {{1, 0.0}, {2, 0.0}, {3, 0.0}};
-  EXPECT_DOUBLE_EQ(closing_speed(particles, 0, neighbours), 0.0);
+TEST(TimeLevels, ApproachSpeedIsTheRelativeVelocityAlongTheLineOfCentres) {
+  // dx = x_i - x_j, dv = u_i - u_j: a neighbour 2 m ahead (+x) and 3 m/s slower closes at 3 m/s.
+  EXPECT_DOUBLE_EQ(approach_speed(-2.0, 0.0, 3.0, 0.0), 3.0);
+  // The same neighbour 2 m behind recedes.
+  EXPECT_DOUBLE_EQ(approach_speed(2.0, 0.0, 3.0, 0.0), -3.0);
+  // Crossing at right angles to the line of centres, it neither closes in nor recedes.
+  EXPECT_DOUBLE_EQ(approach_speed(0.0, -2.0, 5.0, 0.0), 0.0);
+  // Along a diagonal 3-4-5: only the part of dv along the line counts.
+  EXPECT_DOUBLE_EQ(approach_speed(-3.0, -4.0, 5.0, 0.0), 3.0);
+  // Two feet on one spot have no line of centres.
+  EXPECT_DOUBLE_EQ(approach_speed(0.0, 0.0, 5.0, 1.0), 0.0);
 }
 
 TEST(TimeLevels, LevelIsTheShallowestWhoseStepMeetsTheCriterion) {
