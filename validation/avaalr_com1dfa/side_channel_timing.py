@@ -12,6 +12,7 @@ depth in each. com1DFA keeps only its peak fields, so only Talus's side of this 
 """
 import argparse
 import pathlib
+import sys
 
 import numpy as np
 from osgeo import gdal, ogr
@@ -61,7 +62,8 @@ def main():
     args = parser.parse_args()
     snapshots = args.talus_out / "particles.gpkg"
     if not snapshots.exists():
-        raise SystemExit(f"side_channel_timing.py: {snapshots}: not found; run the case with --snapshots SECONDS")
+        print(f"side_channel_timing.py: {snapshots}: not found; run the case with --snapshots SECONDS", file=sys.stderr)
+        sys.exit(2)
     geotransform = gdal.Open(str(args.shared / "data" / "tirol_alr" / "avaAlr.tif")).GetGeoTransform()
     records = read_particles(snapshots, geotransform)
     print("| time (s) | side channel: mass | particles | speed (m/s) | depth (m) "
