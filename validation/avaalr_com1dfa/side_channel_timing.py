@@ -57,14 +57,18 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("talus_out", type=pathlib.Path)
     parser.add_argument("--shared", type=pathlib.Path,
-                        default=pathlib.Path(__file__).resolve().parents[2].parent / "shared",
+                        default=pathlib.Path(__file__).resolve().parents[3] / "shared",
                         help="the shared data folder (default: ../shared beside the repository)")
     args = parser.parse_args()
     snapshots = args.talus_out / "particles.gpkg"
     if not snapshots.exists():
         print(f"side_channel_timing.py: {snapshots}: not found; run the case with --snapshots SECONDS", file=sys.stderr)
         sys.exit(2)
-    geotransform = gdal.Open(str(args.shared / "data" / "tirol_alr" / "avaAlr.tif")).GetGeoTransform()
+    dem = args.shared / "data" / "tirol_alr" / "avaAlr.tif"
+    if not dem.exists():
+        print(f"side_channel_timing.py: {dem}: not found; pass the shared data folder with --shared", file=sys.stderr)
+        sys.exit(2)
+    geotransform = gdal.Open(str(dem)).GetGeoTransform()
     records = read_particles(snapshots, geotransform)
     print("| time (s) | side channel: mass | particles | speed (m/s) | depth (m) "
           "| knob: mass | particles | speed (m/s) | depth (m) |")
