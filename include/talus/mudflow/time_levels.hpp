@@ -10,7 +10,6 @@
 #include <cstdint>
 
 #include "talus/mudflow/flow_density.hpp"
-#include "talus/mudflow/particle_set.hpp"
 
 namespace talus {
 
