@@ -22,7 +22,7 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 CASE = ROOT / "validation" / "avaalr_com1dfa"
-DEM = ROOT.parent / "shared" / "data" / "tirol_alr" / "avaAlr.tif"
+DEM = ROOT / "data" / "tirol_alr" / "avaAlr.tif"
 FIGURES = {  # compare.py's row label -> column name here
     "affected area, peak thickness > 0.1 m (km2)": "area",
     "footprint IoU": "iou",

@@ -38,7 +38,7 @@ struct SampleScene {
   std::vector<talus::ReleaseSource> sources;
 };
 
-// The sample scene with the built-in materials, read once (DESIGN.md section 1: gis -> scene).
+// The sample scene with the built-in materials, read once (docs/architecture.md section 1: gis -> scene).
 const SampleScene& sample_scene() {
   static const SampleScene sample = [] {
     talus::gis::SceneInputs inputs = sample_scene_inputs();

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Chart of the rock-fall speed-against-accuracy sweep (issue 4; DESIGN.md section 4).
+"""Chart of the rock-fall speed-against-accuracy sweep (issue 4; docs/architecture.md section 4).
 
 Reads the CSV that build/bench/rockfall_speed_accuracy writes and draws two panels against
 the CPU time per trajectory (log scale), each against the finest full model: the runout error

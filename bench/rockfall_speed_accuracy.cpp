@@ -1,5 +1,5 @@
 // Speed against accuracy of the rock-fall models on the sample scene (issue 4, "Benchmarks and
-// chart"; DESIGN.md section 4). The stochastic runs of paper 3.4 over a fixed subset of the
+// chart"; docs/architecture.md section 4). The stochastic runs of paper 3.4 over a fixed subset of the
 // release sources, with one seed for every configuration (the same release points, rocks and
 // Perlin grounds), for: the full model of paper 2.2/3.3 at several piston-carpet spacings and
 // time-step factors, and the fast bounce mode of paper 3.3 with the built-in materials table
@@ -54,7 +54,7 @@ struct Options {
   double time_limit = 240.0;          // s of wall time per configuration
 };
 
-// Bad usage: one line naming the problem, the usage, exit code 2 (DESIGN.md section 3).
+// Bad usage: one line naming the problem, the usage, exit code 2 (docs/architecture.md section 3).
 [[noreturn]] void usage_error(const std::string& message) {
   std::cerr << "rockfall_speed_accuracy: error: " << message << "\n"
             << "usage: rockfall_speed_accuracy OUT.csv [--calibrated-materials F.toml] [--source-stride N] [--runs N]"
@@ -106,7 +106,7 @@ struct SampleScene {
   std::vector<talus::ReleaseSource> sources;
 };
 
-// Reads the sample scene through the gis layer, as `talus rockfall` does (DESIGN.md section 1).
+// Reads the sample scene through the gis layer, as `talus rockfall` does (docs/architecture.md section 1).
 SampleScene load_sample(const std::string& materials, std::size_t stride) {
   talus::gis::SceneInputs inputs = sample_scene_inputs();
   inputs.materials = materials;

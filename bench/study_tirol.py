@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The regional study benchmark on the whole Tirol DEM (issue 19, "Benchmarks").
 
-Writes a study of ../shared/data/tirol_alr/avaAlr.tif (417 x 915 cells of 5 m): every cell the
+Writes a study of data/tirol_alr/avaAlr.tif (417 x 915 cells of 5 m): every cell the
 source detection finds (release = "auto", Loye et al. 2009), three block scenarios (0.5 m / 30
 years, 1 m / 100 years, 2 m / 300 years), RUNS runs per source, no QGIS project; runs
 `talus study` under /usr/bin/time, in one process or under `mpirun -np RANKS` (issue 19, item 6),
@@ -28,7 +28,7 @@ import sys
 import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-DEM = ROOT.parent / "shared" / "data" / "tirol_alr" / "avaAlr.tif"
+DEM = ROOT / "data" / "tirol_alr" / "avaAlr.tif"
 BLOCKS = [("blocks-0.5m", "0.5", 30), ("blocks-1m", "1", 100), ("blocks-2m", "2", 300)]
 
 

@@ -27,7 +27,7 @@ ogr.UseExceptions()
 osr.UseExceptions()
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-DEFAULT_SOURCE = os.path.join(HERE, "..", "..", "shared", "data", "tirol_alr", "avaAlr.tif")
+DEFAULT_SOURCE = os.path.join(HERE, "..", "data", "tirol_alr", "avaAlr.tif")
 
 # Crop window in source cells: column offset, row offset, columns, rows (5 m cells, so
 # 1.3 km east-west by 2.0 km north-south). Found by scanning all windows of this size for the

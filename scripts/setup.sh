@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian packages Talus needs (DESIGN.md section 4) when any is missing.
+# Installs the Debian packages Talus needs (docs/architecture.md section 4) when any is missing.
 # Idempotent: prints nothing and touches nothing when every package is already there.
 set -euo pipefail
 

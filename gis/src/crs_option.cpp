@@ -1,4 +1,4 @@
-// Parsing of the --crs option (DESIGN.md section 3).
+// Parsing of the --crs option (docs/architecture.md section 3).
 #include "talus/gis/crs_option.hpp"
 
 #include <ogr_spatialref.h>

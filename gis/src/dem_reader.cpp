@@ -1,4 +1,4 @@
-// DEM reading with the CRS rules of DESIGN.md section 3.
+// DEM reading with the CRS rules of docs/architecture.md section 3.
 #include "talus/gis/dem_reader.hpp"
 
 #include <unistd.h>

@@ -1,4 +1,4 @@
-// Opening files through GDAL with clear one-line errors (DESIGN.md section 3, exit code 2).
+// Opening files through GDAL with clear one-line errors (docs/architecture.md section 3, exit code 2).
 #include "talus/gis/gdal_dataset.hpp"
 
 #include <cpl_error.h>

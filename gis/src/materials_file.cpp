@@ -32,7 +32,7 @@ struct LithologyNumber {
   double min, max;
 };
 
-// The ranges hold every class of ../shared/REFERENCES.md's tables with room to spare; beyond them
+// The ranges hold every class of docs/references.md's tables with room to spare; beyond them
 // the piston carpet's steps or the bounce model stop meaning anything.
 constexpr std::array<LithologyNumber, 9> lithology_numbers{{
     {"elastic_slope", &LithologyClass::elastic_slope, "k1, Pa/m", "Pa/m", 1e3, 1e12},

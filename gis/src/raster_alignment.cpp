@@ -1,4 +1,4 @@
-// Alignment of secondary rasters onto the DEM grid with GDALWarp (DESIGN.md section 3).
+// Alignment of secondary rasters onto the DEM grid with GDALWarp (docs/architecture.md section 3).
 #include "talus/gis/raster_alignment.hpp"
 
 #include <gdal_utils.h>

@@ -1,4 +1,4 @@
-// Reading release rasters and release vector layers (DESIGN.md section 3, --release), with
+// Reading release rasters and release vector layers (docs/architecture.md section 3, --release), with
 // the rock-fall attributes of their features (issue 16).
 #include "talus/gis/release_reader.hpp"
 

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "talus/gis/build_commit.hpp"
 #include "talus/gis/dem_reader.hpp"
 #include "talus/gis/gdal_dataset.hpp"
 
@@ -45,8 +46,8 @@ namespace {
 using ordered_json = nlohmann::ordered_json;
 
 // The keys RunRecord fills itself (to_json).
-constexpr std::array kRecordKeys{"software", "version", "gdal_version", "started_utc", "finished_utc", "host",
-                                 "command_line", "inputs", "parameters", "timings_s"};
+constexpr std::array kRecordKeys{"software", "version", "git_commit", "gdal_version", "started_utc", "finished_utc",
+                                 "host", "command_line", "inputs", "parameters", "timings_s"};
 
 // "2024-05-17T09:41:03Z"
 std::string utc_now() {
@@ -164,6 +165,7 @@ ordered_json RunRecord::to_json() const {
   ordered_json record;
   record["software"] = "talus";
   record["version"] = TALUS_VERSION;
+  record["git_commit"] = git_commit();
   record["gdal_version"] = GDALVersionInfo("RELEASE_NAME");
   record["started_utc"] = started_utc_;
   record["finished_utc"] = utc_now();

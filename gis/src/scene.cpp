@@ -1,4 +1,4 @@
-// Building the scene from the user's files (DESIGN.md sections 1 and 3).
+// Building the scene from the user's files (docs/architecture.md sections 1 and 3).
 #include "talus/gis/scene.hpp"
 
 #include <ogrsf_frmts.h>
@@ -130,7 +130,7 @@ void load_vegetation(Scene& scene, const CrsOption& crs) {
   }
 }
 
-// Mud flow releases the depth given per feature (DESIGN.md section 3, --release; docs/inputs.md,
+// Mud flow releases the depth given per feature (docs/architecture.md section 3, --release; docs/inputs.md,
 // "Release depth"): every layer of a vector release needs the depth attribute, and every
 // feature a non-zero value in it. A raster release carries its depths in its values; one whose
 // release cells all hold 1 is a mask, refused. With a uniform depth (--depth) nothing is needed.

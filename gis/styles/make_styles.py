@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes the QML style of every output layer (DESIGN.md section 3).
+"""Writes the QML style of every output layer (docs/architecture.md section 3).
 
 usage: /usr/bin/python3 gis/styles/make_styles.py [FOLDER]   (default: this folder)
 

@@ -158,7 +158,7 @@ void write_text(const fs::path& path, const std::string& text) {
   if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
-// Checks every option before any work, so that bad input writes nothing (DESIGN.md section 3).
+// Checks every option before any work, so that bad input writes nothing (docs/architecture.md section 3).
 void check_options(const CalibrateOptions& o) {
   if (o.out.extension() != ".toml") throw InputError("--out " + o.out.string() + ": give a .toml file name");
   if (fs::is_directory(o.out)) throw InputError("--out " + o.out.string() + ": is a folder");

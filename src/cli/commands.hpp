@@ -1,4 +1,4 @@
-// The `talus` subcommands (DESIGN.md section 3). Each adds itself to the parser and sets the
+// The `talus` subcommands (docs/architecture.md section 3). Each adds itself to the parser and sets the
 // action that main runs once parsing succeeded.
 #pragma once
 

@@ -1,5 +1,5 @@
 // The `talus` program: parses the command line and maps failures to the exit codes of
-// DESIGN.md section 3 (0 done, 2 bad usage or input, 3 numerical failure, 1 anything else,
+// docs/architecture.md section 3 (0 done, 2 bad usage or input, 3 numerical failure, 1 anything else,
 // 130 cancelled with Ctrl-C),
 // with one line `talus: error: ...` on stderr (from rank 0 alone when mpirun or srun started it:
 // process_ranks.hpp).
@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/core/progress.hpp"
+#include "talus/gis/build_commit.hpp"
 #ifdef TALUS_WITH_MPI
 #include "mpi_ranks.hpp"
 #endif
@@ -31,7 +32,8 @@ int fail(int code, const std::string& message) {
 
 int main(int argc, char** argv) {
   CLI::App app{"Talus: rock-fall and mud-flow hazard maps from a DEM (Gascuel et al. 1998)", "talus"};
-  app.set_version_flag("--version", std::string("talus ") + TALUS_VERSION);
+  app.set_version_flag("--version", std::string("talus ") + TALUS_VERSION + " (commit " +
+                                        std::string(talus::gis::git_commit()) + ")");
   app.require_subcommand(1);
   talus::cli::Action action;
   const std::vector<std::string> command_line(argv, argv + argc);

@@ -1,4 +1,4 @@
-// `talus mudflow` (DESIGN.md section 3, issue 5): its options, parsed into the call that does
+// `talus mudflow` (docs/architecture.md section 3, issue 5): its options, parsed into the call that does
 // the work (mudflow_job.hpp), with the lines on stdout and the progress on stderr.
 #include <iterator>
 #include <memory>

@@ -1,4 +1,4 @@
-// The work of `talus mudflow` as one library call (DESIGN.md section 3, issue 5; issue 19): the
+// The work of `talus mudflow` as one library call (docs/architecture.md section 3, issue 5; issue 19): the
 // adaptive smoothed-particle mud flow of paper section 4 on the scene, every mud-flow layer,
 // optional particle snapshots and run.json, committed as one set.
 #include "mudflow_job.hpp"

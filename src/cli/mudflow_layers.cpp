@@ -3,7 +3,7 @@
 
 namespace talus::cli {
 
-// The mud-flow layers of DESIGN.md section 3 with their band descriptions and units; erosion_depth
+// The mud-flow layers of docs/architecture.md section 3 with their band descriptions and units; erosion_depth
 // only when the run has erodible material.
 HazardLayers mudflow_hazard_layers(const FlowLayers& layers) {
   HazardLayers out = {

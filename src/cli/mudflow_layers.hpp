@@ -1,4 +1,4 @@
-// The hazard layers a mud-flow run writes (DESIGN.md section 3), with their file names,
+// The hazard layers a mud-flow run writes (docs/architecture.md section 3), with their file names,
 // descriptions and units: written by `talus mudflow`, and the names its intensity classes may use.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The parameter table behind scenario files, `talus params` and run.json (DESIGN.md 1).
+// The parameter table behind scenario files, `talus params` and run.json (docs/architecture.md section 5).
 #include "parameter_table.hpp"
 
 #include <algorithm>

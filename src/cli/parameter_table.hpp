@@ -1,4 +1,4 @@
-// Parameters are data (DESIGN.md section 1): every tunable number of a run is listed once
+// Parameters are data (docs/architecture.md section 5): every tunable number of a run is listed once
 // here with its section, unit and meaning; the scenario TOML maps onto it 1:1, `talus params`
 // prints it as JSON, and run.json records the resolved values.
 #pragma once

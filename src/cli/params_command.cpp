@@ -1,5 +1,5 @@
-// `talus params`: every parameter of every model as JSON (DESIGN.md section 1: the QGIS
-// provider and the docs are generated from it).
+// `talus params`: every parameter of every model as JSON (docs/architecture.md section 5: the QGIS
+// provider builds its dialogs from it).
 #include <iostream>
 
 #include "commands.hpp"

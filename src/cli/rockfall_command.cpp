@@ -1,4 +1,4 @@
-// `talus rockfall` (DESIGN.md section 3, issue 3): its options, parsed into the call that does
+// `talus rockfall` (docs/architecture.md section 3, issue 3): its options, parsed into the call that does
 // the work (rockfall_job.hpp), with the lines on stdout and the progress on stderr.
 #include <cstdio>
 #include <memory>

@@ -1,4 +1,4 @@
-// The work of `talus rockfall` as one library call (DESIGN.md section 3, issue 3; issue 19):
+// The work of `talus rockfall` as one library call (docs/architecture.md section 3, issue 3; issue 19):
 // stochastic rock-fall trajectories on the scene and every rock-fall layer, trajectories.gpkg and
 // run.json, committed as one set.
 #include "rockfall_job.hpp"

@@ -3,7 +3,7 @@
 
 namespace talus::cli {
 
-// The ten layers of DESIGN.md section 3 with their band descriptions and units.
+// The ten layers of docs/architecture.md section 3 with their band descriptions and units.
 HazardLayers rockfall_hazard_layers(const RockfallLayers& layers) {
   return {{&layers.reach_probability, {"reach_probability", "Reach probability per contributing source", ""}},
           {&layers.passages, {"passages", "Number of passages", ""}},

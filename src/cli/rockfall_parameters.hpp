@@ -1,4 +1,4 @@
-// The parameters of `talus rockfall` (DESIGN.md section 1, issue 18, item 1): its options, the
+// The parameters of `talus rockfall` (docs/architecture.md section 5, issue 18, item 1): its options, the
 // scenario file's keys with their units, meanings and ranges, and the checks a run makes before it
 // reads any input. Apart from the simulation so that the scenario fuzz target builds without it
 // (docs/fuzzing.md).

@@ -1,4 +1,4 @@
-// GridSpec comparison (DESIGN.md section 1: grids whose specs differ are refused when combined).
+// GridSpec comparison (docs/architecture.md section 1: grids whose specs differ are refused when combined).
 #include "talus/core/grid_spec.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Release set sizes (DESIGN.md section 3) and the conditions of release cells (issue 16).
+// Release set sizes (docs/architecture.md section 3) and the conditions of release cells (issue 16).
 #include "talus/core/release.hpp"
 
 namespace talus {

@@ -1,4 +1,4 @@
-// CellCounts: merge of per-cell counts (DESIGN.md section 2, "Statistical maps").
+// CellCounts: merge of per-cell counts (docs/architecture.md section 2, "Statistical maps").
 #include "talus/hazard/cell_counts.hpp"
 
 #include <stdexcept>

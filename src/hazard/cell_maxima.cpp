@@ -1,4 +1,4 @@
-// CellMaxima: merge of per-cell maxima (DESIGN.md section 2, "Statistical maps").
+// CellMaxima: merge of per-cell maxima (docs/architecture.md section 2, "Statistical maps").
 #include "talus/hazard/cell_maxima.hpp"
 
 #include <stdexcept>

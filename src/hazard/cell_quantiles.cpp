@@ -1,5 +1,5 @@
 // CellQuantiles: lazily created per-cell logarithmic histograms and their exact merge
-// (DESIGN.md section 2, "Statistical maps").
+// (docs/architecture.md section 2, "Statistical maps").
 #include "talus/hazard/cell_quantiles.hpp"
 
 #include <limits>

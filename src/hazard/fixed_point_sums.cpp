@@ -1,4 +1,4 @@
-// FixedPointSums: rounding to quanta and overflow-guarded int64 sums (DESIGN.md section 2,
+// FixedPointSums: rounding to quanta and overflow-guarded int64 sums (docs/architecture.md section 2,
 // "Statistical maps": energy lost by friction and by ground deformation).
 #include "talus/hazard/fixed_point_sums.hpp"
 

@@ -1,5 +1,5 @@
 // LogBinning: logarithmic bin edges and exact bin lookup for the quantile estimator
-// (DESIGN.md section 2, "Statistical maps").
+// (docs/architecture.md section 2, "Statistical maps").
 #include "talus/hazard/log_binning.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // LogHistogram: windowed logarithmic bin counts, exact merge and log-linear quantiles
-// (DESIGN.md section 2, "Statistical maps": 95th percentiles over passages).
+// (docs/architecture.md section 2, "Statistical maps": 95th percentiles over passages).
 #include "talus/hazard/log_histogram.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The mud-flow layers (DESIGN.md section 3) from the particles' volumes spread onto the DEM
+// The mud-flow layers (docs/architecture.md section 3) from the particles' volumes spread onto the DEM
 // cells with the smoothing kernel (paper 4.1), serially in index order.
 #include "talus/mudflow/flow_maps.hpp"
 

@@ -1,4 +1,4 @@
-// Release of the mud as particles (issue 5, DESIGN.md section 3 --release; paper 4.1).
+// Release of the mud as particles (issue 5, docs/architecture.md section 3 --release; paper 4.1).
 #include "talus/mudflow/release_particles.hpp"
 
 #include <algorithm>
@@ -126,7 +126,7 @@ const char* to_string(ReleaseThickness thickness) {
   return thickness == ReleaseThickness::normal ? "normal" : "vertical";
 }
 
-// Cells in index order, then points (DESIGN.md section 3 --release), each a column of rho0 d A.
+// Cells in index order, then points (docs/architecture.md section 3 --release), each a column of rho0 d A.
 ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& release, const ReleaseLayout& layout) {
   check_layout(layout);
   const GridSpec& spec = ground.spec();

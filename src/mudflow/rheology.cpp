@@ -36,7 +36,7 @@ const char* to_string(Rheology rheology) {
 //   voellmy  tau = mu N + rho0 g u^2 / xi   -> the same plus g u^2 / (xi h)
 //   viscous  tau = 3 eta u / h              -> 3 eta u / (rho0 h^2)   (laminar Newtonian layer)
 //   bingham  tau = tau_y + 3 eta u / h      -> tau_y / (rho0 h) + 3 eta u / (rho0 h^2)
-// and the vegetation's c |u| u for every rheology (as for rocks, DESIGN.md section 2).
+// and the vegetation's c |u| u for every rheology (as for rocks, docs/architecture.md section 2).
 BasalResistance basal_resistance(const RheologyParameters& parameters, const BasalContact& contact,
                                  double mud_density, double gravity) {
   const double h = contact.depth;

@@ -1,5 +1,5 @@
 // The statistical map of paper 3.4 ("Gathering simulation data") for rock fall, with the layers
-// of DESIGN.md section 3: a Recorder walks the cells under each trajectory's segments, keeps
+// of docs/architecture.md section 3: a Recorder walks the cells under each trajectory's segments, keeps
 // per-trajectory maxima and losses per cell, and commits them into exact per-cell accumulators
 // (src/hazard), so statistics merged across threads are bit-identical to a single run.
 #include "talus/rockfall/rockfall_statistics.hpp"

@@ -1,7 +1,7 @@
 // Code-to-code validation of the mud flow (issue 20, Deliver 1): Talus on AvaFrame's own case
-// avaAlr (the DEM and release polygon of ../shared/data/tirol_alr, 1 m released normal to the
+// avaAlr (the DEM and release polygon of data/tirol_alr, 1 m released normal to the
 // slope) with com1DFA's Voellmy parameters (validation/avaalr_com1dfa/scenario.toml), against
-// com1DFA's peak fields (../shared/data/avaframe_alr_com1dfa). The figures are defined as in
+// com1DFA's peak fields (data/avaframe_alr_com1dfa). The figures are defined as in
 // validation/avaalr_com1dfa/compare.py, which also draws the difference maps; docs/validation.md
 // gives the measured values.
 #include <gtest/gtest.h>
@@ -32,8 +32,8 @@ constexpr double kAffectedThickness = 0.1;  // m: a cell is affected when its pe
 constexpr double kComReleasedVolume = 52796;  // m3: com1DFA's release (the data set's README)
 
 fs::path case_dir() { return test::source_dir() / "validation" / "avaalr_com1dfa"; }
-fs::path reference_dir() { return test::shared_dir() / "data" / "avaframe_alr_com1dfa"; }
-fs::path dem_path() { return test::shared_dir() / "data" / "tirol_alr" / "avaAlr.tif"; }
+fs::path reference_dir() { return test::data_dir() / "avaframe_alr_com1dfa"; }
+fs::path dem_path() { return test::data_dir() / "tirol_alr" / "avaAlr.tif"; }
 
 // One band of a raster on the avaAlr grid, nodata and non-numbers as 0, negatives as 0.
 struct Field {

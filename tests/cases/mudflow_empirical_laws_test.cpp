@@ -1,6 +1,6 @@
 // Validation against the empirical laws of debris-flow mobility (issue 20, Deliver 4): debris
 // flows of 100, 1000 and 10,000 m3 released in gully A of the Tirol DEM
-// (../shared/data/tirol_alr/avaAlr.tif), with the debris-flow scenario of
+// (data/tirol_alr/avaAlr.tif), with the debris-flow scenario of
 // validation/empirical_laws/ (scenario.toml: Voellmy, mu 0.1, xi 500 m/s2, 2000 kg/m3). The site,
 // radii, depths and particle sizes come from validation/empirical_laws/releases.csv, the file the
 // script empirical_laws.py reads too; this test doubles the particle sizes (kCoarsening) to keep
@@ -51,7 +51,7 @@ const char* const kSite = "A";
 const int kVolumes[] = {100, 1000, 10000};
 
 fs::path case_dir() { return test::source_dir() / "validation" / "empirical_laws"; }
-fs::path dem_path() { return test::shared_dir() / "data" / "tirol_alr" / "avaAlr.tif"; }
+fs::path dem_path() { return test::data_dir() / "tirol_alr" / "avaAlr.tif"; }
 
 // One row of releases.csv: a disc of release cells (centres within radius_m of x, y) of depth_m.
 struct Release {

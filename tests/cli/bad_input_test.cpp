@@ -1,4 +1,4 @@
-// Bad inputs (DESIGN.md section 3): exit code 2, one line `talus: error: ...` naming the
+// Bad inputs (docs/architecture.md section 3): exit code 2, one line `talus: error: ...` naming the
 // file and the problem, and nothing written.
 #include <gtest/gtest.h>
 
@@ -104,7 +104,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"not_a_raster", {"not_a_raster.tif"}, "not_a_raster.tif", "not a raster"},
         BadInput{"dem_without_crs", {"dem_without_crs.tif"}, "dem_without_crs.tif", "has no CRS"},
         BadInput{"crs_contradicts_coordinates",
-                 {(test::shared_dir() / "data/fluchthorn_bad_crs/fluchthorn.tif").string()},
+                 {(test::data_dir() / "fluchthorn_bad_crs/fluchthorn.tif").string()},
                  "fluchthorn.tif",
                  "coordinates"},
         BadInput{"lithology_not_overlapping", {"dem.tif", "--lithology", "lithology_elsewhere.tif"},

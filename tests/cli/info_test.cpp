@@ -43,7 +43,7 @@ TEST(Info, SummarisesTheMudflowReleasePolygon) {
 
 TEST(Info, SummarisesTheNorwegianForestWithAContinuousVegetationRaster) {
   const auto work = test::fresh_folder("info_norway");
-  const auto data = test::shared_dir() / "data/norway_forest";
+  const auto data = test::data_dir() / "norway_forest";
   const auto result = test::run_talus({"info", (data / "dem_5m_sn1.asc").string(), "--vegetation", (data / "nD.asc").string(),
                                        "--release", (data / "rel_sn1.asc").string(), "--crs", "EPSG:25833"},
                                       work);

@@ -1,5 +1,5 @@
 // `talus mudflow` end to end (issue 5, "Done when"): every layer of the contract
-// (../shared/tools/check_layers.py) on the sample scene and on Mount St Helens, styled in QGIS;
+// (tests/support/layer_contract.hpp) on the sample scene and on Mount St Helens, styled in QGIS;
 // run.json's counts and the volume balance; the same layers at 1 and 2 threads; entrainment
 // from an erodible raster; particle snapshots; bad inputs refused with one line and nothing
 // written.
@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "raster_fixtures.hpp"
+#include "layer_contract.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -96,7 +97,8 @@ test::ProgramResult SampleMudflow::result_;
 
 TEST_F(SampleMudflow, WritesEveryLayerOfTheContract) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
-  EXPECT_EQ(test::check_layers("mudflow", root_ / "out", test::source_dir() / "sample_dem/dem.tif"), 0);
+  EXPECT_EQ(test::layer_contract_problems("mudflow", root_ / "out", test::source_dir() / "sample_dem/dem.tif"),
+            test::kNoProblems);
   EXPECT_NE(result_.out.find("Layers written to"), std::string::npos);
   EXPECT_NE(result_.err.find("Progress: 100% (mud flow: simulated "), std::string::npos) << result_.err;
   EXPECT_FALSE(fs::exists(root_ / "out" / "erosion_depth.tif"));  // no --erodible
@@ -265,7 +267,8 @@ TEST(MudflowErosion, EntrainsFromTheErodibleRaster) {
   const auto eroding = test::run_talus(
       with(sample_arguments(root / "eroding", "1"), {"--erodible", (root / "erodible.tif").string()}), root);
   ASSERT_EQ(eroding.exit_code, 0) << eroding.err;
-  EXPECT_EQ(test::check_layers("mudflow", root / "eroding", test::source_dir() / "sample_dem/dem.tif"), 0);
+  EXPECT_EQ(test::layer_contract_problems("mudflow", root / "eroding", test::source_dir() / "sample_dem/dem.tif"),
+            test::kNoProblems);
   ASSERT_TRUE(fs::exists(root / "eroding" / "erosion_depth.tif"));
   const nlohmann::json record = read_json(root / "eroding" / "run.json");
   EXPECT_EQ(record["inputs"]["erodible"]["sha256"].get<std::string>().size(), 64u);
@@ -286,13 +289,13 @@ TEST(MudflowErosion, EntrainsFromTheErodibleRaster) {
 // in local coordinates.
 TEST(MudflowStHelens, WritesEveryLayerInLocalCoordinates) {
   const auto root = test::fresh_folder("mudflow_sthelens");
-  const auto data = test::shared_dir() / "data/sthelens2021";
+  const auto data = test::data_dir() / "sthelens2021";
   const auto result = test::run_talus({"mudflow", "--dem", (data / "pre_runout_DEM.asc").string(), "--release",
                                        (data / "landslide_depth.asc").string(), "--crs", "local", "--out",
                                        (root / "out").string(), "--threads", "1"},
                                       root);
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_EQ(test::check_layers("mudflow", root / "out", data / "pre_runout_DEM.asc"), 0);
+  EXPECT_EQ(test::layer_contract_problems("mudflow", root / "out", data / "pre_runout_DEM.asc"), test::kNoProblems);
   const nlohmann::json record = read_json(root / "out" / "run.json");
   EXPECT_GT(record["volumes_m3"]["released"].get<double>(), 0.0);
   EXPECT_NEAR(volume_balance(record), 0.0, 0.02);

@@ -2,7 +2,7 @@
 // end to end on the sample scene: 20 of its release cells (every 13th of
 // sample_dem/rockfall_release.gpkg), one 1 m sphere each cut into two halves ([rock]
 // fracture_parts = 2, the default strength of 1000 kN). The run succeeds, its layers pass
-// ../shared/tools/check_layers.py, run.json records the parameters and the fragments (the bonds
+// tests/support/layer_contract.hpp, run.json records the parameters and the fragments (the bonds
 // form a tree, so each broken bond adds one fragment), every fragment stops once, and the layers
 // are the same at 1 and 2 threads. Fast mode and part counts other than 1, 2, 4, 8 are refused.
 #include <gtest/gtest.h>
@@ -17,6 +17,7 @@
 #include <ogrsf_frmts.h>
 
 #include "raster_fixtures.hpp"
+#include "layer_contract.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -76,7 +77,8 @@ std::map<std::string, test::ProgramResult> SampleFracture::results_;
 
 TEST_F(SampleFracture, WritesEveryLayerOfTheContract) {
   for (const auto& [name, result] : results_) ASSERT_EQ(result.exit_code, 0) << name << ": " << result.err;
-  EXPECT_EQ(test::check_layers("rockfall", root_ / "t2", test::source_dir() / "sample_dem/dem.tif"), 0);
+  EXPECT_EQ(test::layer_contract_problems("rockfall", root_ / "t2", test::source_dir() / "sample_dem/dem.tif"),
+            test::kNoProblems);
 }
 
 TEST_F(SampleFracture, RecordsTheFragmentsAndEveryStop) {

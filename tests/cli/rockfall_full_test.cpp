@@ -1,5 +1,5 @@
 // `talus rockfall --mode full` end to end on the sample scene (issue 4, "Done when"): the
-// piston-carpet model writes every layer of the contract (../shared/tools/check_layers.py),
+// piston-carpet model writes every layer of the contract (tests/support/layer_contract.hpp),
 // records its mode and parameters in run.json, books energy lost to ground deformation, and
 // gives the same layers at 1 and 2 threads.
 #include <gtest/gtest.h>
@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "raster_fixtures.hpp"
+#include "layer_contract.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -44,7 +45,8 @@ std::map<std::string, test::ProgramResult> SampleFullMode::results_;
 
 TEST_F(SampleFullMode, WritesEveryLayerOfTheContract) {
   for (const auto& [name, result] : results_) ASSERT_EQ(result.exit_code, 0) << name << ": " << result.err;
-  EXPECT_EQ(test::check_layers("rockfall", root_ / "t2", test::source_dir() / "sample_dem/dem.tif"), 0);
+  EXPECT_EQ(test::layer_contract_problems("rockfall", root_ / "t2", test::source_dir() / "sample_dem/dem.tif"),
+            test::kNoProblems);
 }
 
 TEST_F(SampleFullMode, RecordsTheModeAndBooksDeformationLosses) {

@@ -1,5 +1,5 @@
 // `talus rockfall --mode fast` end to end on the sample scene (issue 3, "Done when"): every
-// layer passes ../shared/tools/check_layers.py and opens styled in QGIS; same seed gives
+// layer passes tests/support/layer_contract.hpp and opens styled in QGIS; same seed gives
 // identical layers at 1 and 2 threads; another seed gives different layers with consistent
 // statistics.
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "raster_fixtures.hpp"
+#include "layer_contract.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -49,7 +50,8 @@ std::map<std::string, test::ProgramResult> SampleRockfall::results_;
 
 TEST_F(SampleRockfall, WritesEveryLayerOfTheContract) {
   for (const auto& [name, result] : results_) ASSERT_EQ(result.exit_code, 0) << name << ": " << result.err;
-  EXPECT_EQ(test::check_layers("rockfall", root_ / "seed1_t2", test::source_dir() / "sample_dem/dem.tif"), 0);
+  EXPECT_EQ(test::layer_contract_problems("rockfall", root_ / "seed1_t2", test::source_dir() / "sample_dem/dem.tif"),
+            test::kNoProblems);
   EXPECT_NE(results_["seed1_t2"].out.find("Layers written to"), std::string::npos);
   EXPECT_NE(results_["seed1_t2"].err.find("Progress: 100%"), std::string::npos);
   for (const auto& entry : fs::directory_iterator(root_ / "seed1_t2")) {
@@ -105,7 +107,7 @@ TEST(RockfallUsage, BadReleaseWritesNothing) {
   const auto work = test::fresh_folder("rockfall_bad_release");
   auto arguments = sample_arguments(work / "out", "1", "1");
   arguments[8] = (test::source_dir() / "sample_dem/lithology.tif").string();  // --release: a class raster of 1..6
-  arguments[2] = (test::shared_dir() / "data/fluchthorn_bad_crs/fluchthorn.tif").string();
+  arguments[2] = (test::data_dir() / "fluchthorn_bad_crs/fluchthorn.tif").string();
   const auto result = test::run_talus(arguments, work);
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;

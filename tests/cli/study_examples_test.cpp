@@ -1,6 +1,6 @@
 // The two studies docs/study.md documents run end to end (issue 19, "Done when"):
 // sample_dem/study.toml and docs/examples/tirol_alr.study.toml, every scenario's layers by the
-// layer contract (../shared/tools/check_layers.py), the hazard map and study.json complete.
+// layer contract (tests/support/layer_contract.hpp), the hazard map and study.json complete.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "layer_contract.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -24,7 +25,8 @@ void expect_complete_study(const fs::path& study, std::size_t scenarios, const f
   const nlohmann::json record = nlohmann::json::parse(record_file);
   ASSERT_EQ(record["scenarios"].size(), scenarios);
   for (const auto& s : record["scenarios"]) {
-    EXPECT_EQ(test::check_layers(s["process"].get<std::string>(), folder / "out" / s["folder"].get<std::string>(), dem), 0)
+    EXPECT_EQ(test::layer_contract_problems(s["process"].get<std::string>(), folder / "out" / s["folder"].get<std::string>(), dem),
+              test::kNoProblems)
         << s["name"];
   }
   EXPECT_TRUE(fs::exists(folder / "out/hazard/hazard.tif"));
@@ -38,7 +40,7 @@ TEST(StudyExamples, TheSampleStudyRunsEndToEnd) {
 
 TEST(StudyExamples, TheTirolStudyRunsEndToEnd) {
   expect_complete_study(test::source_dir() / "docs/examples/tirol_alr.study.toml", 4,
-                        test::shared_dir() / "data/tirol_alr/avaAlr.tif");
+                        test::data_dir() / "tirol_alr/avaAlr.tif");
 }
 
 }  // namespace

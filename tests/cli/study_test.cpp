@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "raster_fixtures.hpp"
+#include "layer_contract.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 
@@ -96,8 +97,10 @@ TEST(Study, EachScenarioEqualsItsSubcommandBitForBit) {
               band(folder / "mudflow" / (std::string(layer) + ".tif")))
         << layer;
   }
-  EXPECT_EQ(test::check_layers("rockfall", folder / "out/scenarios/blocks", sample / "dem.tif"), 0);
-  EXPECT_EQ(test::check_layers("mudflow", folder / "out/scenarios/mud", sample / "dem.tif"), 0);
+  EXPECT_EQ(test::layer_contract_problems("rockfall", folder / "out/scenarios/blocks", sample / "dem.tif"),
+            test::kNoProblems);
+  EXPECT_EQ(test::layer_contract_problems("mudflow", folder / "out/scenarios/mud", sample / "dem.tif"),
+            test::kNoProblems);
 
   std::ifstream record_file(folder / "out/study.json");
   const nlohmann::json record = nlohmann::json::parse(record_file);

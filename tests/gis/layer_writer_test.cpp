@@ -1,4 +1,4 @@
-// LayerWriter: the output-layer contract of DESIGN.md section 3, read back with GDAL and QGIS.
+// LayerWriter: the output-layer contract of docs/architecture.md section 3, read back with GDAL and QGIS.
 #include "talus/gis/layer_writer.hpp"
 
 #include <gdal_priv.h>

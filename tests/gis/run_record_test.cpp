@@ -1,4 +1,4 @@
-// run.json (DESIGN.md section 3): valid JSON with the expected keys, inputs described with their
+// run.json (docs/architecture.md section 3): valid JSON with the expected keys, inputs described with their
 // size, CRS and a SHA-256 checksum that agrees with sha256sum.
 #include "talus/gis/run_record.hpp"
 
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "raster_fixtures.hpp"
+#include "talus/gis/build_commit.hpp"
 #include "test_paths.hpp"
 
 namespace talus::gis {
@@ -72,11 +73,15 @@ TEST(RunRecord, WritesValidJsonWithTheExpectedKeysInOrder) {
   const auto run = read_json(folder / "run.json");
   std::vector<std::string> keys;
   for (const auto& item : run.items()) keys.push_back(item.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"software", "version", "gdal_version", "started_utc", "finished_utc",
-                                            "host", "command_line", "inputs", "parameters", "seed", "counts",
-                                            "timings_s"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"software", "version", "git_commit", "gdal_version", "started_utc",
+                                            "finished_utc", "host", "command_line", "inputs", "parameters", "seed",
+                                            "counts", "timings_s"}));
   EXPECT_EQ(run["software"], "talus");
   EXPECT_EQ(run["version"], TALUS_VERSION);
+  // 40 hexadecimal digits and "-modified" when the build's tracked files differed, or "unknown".
+  EXPECT_TRUE(std::regex_match(run["git_commit"].get<std::string>(), std::regex("[0-9a-f]{40}(-modified)?|unknown")))
+      << run["git_commit"];
+  EXPECT_EQ(run["git_commit"].get<std::string>(), std::string(git_commit()));
   EXPECT_FALSE(run["gdal_version"].get<std::string>().empty());
   const std::regex utc(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)");
   EXPECT_TRUE(std::regex_match(run["started_utc"].get<std::string>(), utc)) << run["started_utc"];

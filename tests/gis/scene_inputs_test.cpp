@@ -98,7 +98,7 @@ TEST_P(GeographicLithology, KeepsClassSharesWithinOnePercent) {
 INSTANTIATE_TEST_SUITE_P(SourceResolutions, GeographicLithology, ::testing::Values(0.00003, 0.0001));
 
 TEST(DemReader, PixelIsPointIsGeoreferencedToTheRightHalfPixel) {
-  const DemInput dem = read_dem(test::shared_dir() / "data/mal_pixel_is_point/avaMal.tif", CrsOption{});
+  const DemInput dem = read_dem(test::data_dir() / "mal_pixel_is_point/avaMal.tif", CrsOption{});
   const GridSpec& spec = dem.elevation.spec();
   // The file's tie point (166775.664152029, 353586.3405) is the centre of the first cell.
   EXPECT_NEAR(spec.node_x(0), 166775.664152029, 1e-6);
@@ -111,7 +111,7 @@ TEST(DemReader, PixelIsPointIsGeoreferencedToTheRightHalfPixel) {
 }
 
 TEST(DemReader, RefusesAGeographicCrsOnMetreCoordinates) {
-  const auto path = test::shared_dir() / "data/fluchthorn_bad_crs/fluchthorn.tif";
+  const auto path = test::data_dir() / "fluchthorn_bad_crs/fluchthorn.tif";
   try {
     read_dem(path, CrsOption{});
     FAIL() << "expected InputError";
@@ -194,16 +194,16 @@ TEST(DemReader, RefusesElevationsInFeet) {
 }
 
 TEST(DemReader, TakesAZeroBorderAsNodata) {
-  const DemInput dem = read_dem(test::shared_dir() / "data/norway_forest/dem_5m_sn1.asc", parse_crs_option("EPSG:25833"));
+  const DemInput dem = read_dem(test::data_dir() / "norway_forest/dem_5m_sn1.asc", parse_crs_option("EPSG:25833"));
   EXPECT_FALSE(dem.elevation.is_valid(0, 0));
   EXPECT_TRUE(dem.elevation.is_valid(177, 177));
   EXPECT_GT(dem.elevation.at(177, 177), 10.0);
 }
 
 TEST(DemReader, AssignsLocalCoordinates) {
-  const DemInput dem = read_dem(test::shared_dir() / "data/sthelens2021/pre_runout_DEM.asc", parse_crs_option("local"));
+  const DemInput dem = read_dem(test::data_dir() / "sthelens2021/pre_runout_DEM.asc", parse_crs_option("local"));
   EXPECT_TRUE(dem.elevation.spec().crs_wkt.empty());
-  EXPECT_THROW(read_dem(test::shared_dir() / "data/sthelens2021/pre_runout_DEM.asc", CrsOption{}), InputError);
+  EXPECT_THROW(read_dem(test::data_dir() / "sthelens2021/pre_runout_DEM.asc", CrsOption{}), InputError);
 }
 
 class ReleaseLayers : public ::testing::Test {

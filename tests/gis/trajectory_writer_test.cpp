@@ -1,4 +1,4 @@
-// trajectories.gpkg (DESIGN.md section 3): 3D lines with their attributes, read back with OGR
+// trajectories.gpkg (docs/architecture.md section 3): 3D lines with their attributes, read back with OGR
 // and opened in QGIS with their style.
 #include "talus/gis/trajectory_writer.hpp"
 

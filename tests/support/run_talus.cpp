@@ -70,12 +70,4 @@ ProgramResult run_talus_mpi(int ranks, const std::vector<std::string>& arguments
   return run_with(launcher, arguments, working_folder);
 }
 
-int check_layers(const std::string& kind, const std::filesystem::path& out, const std::filesystem::path& dem) {
-  const auto checker = shared_dir() / "tools/check_layers.py";
-  const std::string command =
-      "/usr/bin/python3 " + quoted(checker.string()) + " " + kind + " " + quoted(out.string()) + " " + quoted(dem.string());
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 }  // namespace talus::test

@@ -23,8 +23,4 @@ ProgramResult run_talus_mpi(int ranks, const std::vector<std::string>& arguments
 // The lines of a run's stderr that are errors, `talus: error: ...` (progress lines are not).
 std::vector<std::string> error_lines(const std::string& err);
 
-// The exit code of ../shared/tools/check_layers.py on an output folder: `kind` is "rockfall" or
-// "mudflow", `dem` the run's DEM (0: every layer of the contract is there and right).
-int check_layers(const std::string& kind, const std::filesystem::path& out, const std::filesystem::path& dem);
-
 }  // namespace talus::test

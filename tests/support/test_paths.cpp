@@ -9,7 +9,7 @@ namespace talus::test {
 // Compiled in by tests/CMakeLists.txt, so the tests run the same under ctest and by hand.
 std::filesystem::path talus_exe() { return TALUS_TEST_EXE; }
 std::filesystem::path source_dir() { return TALUS_TEST_SOURCE_DIR; }
-std::filesystem::path shared_dir() { return TALUS_TEST_SHARED_DIR; }
+std::filesystem::path data_dir() { return source_dir() / "data"; }
 
 namespace {
 

@@ -8,7 +8,7 @@ namespace talus::test {
 
 std::filesystem::path talus_exe();      // the built `talus` program
 std::filesystem::path source_dir();     // the repository root
-std::filesystem::path shared_dir();     // ../shared with the real data sets
+std::filesystem::path data_dir();       // data/: the real data sets, each with its licence
 // A fresh, empty temporary folder for one test, private to this process.
 std::filesystem::path fresh_folder(const std::string& name);
 

@@ -86,7 +86,7 @@ TEST(FullModelRolling, SphereRollsWithoutSlipDownAnInclineAtFiveSeventhsGSine) {
 }
 
 TEST(FullModelRolling, RollingResistanceFollowsAzzoni) {
-  // REFERENCES.md (Azzoni): with a rolling friction coefficient mu_r the rolling sphere
+  // docs/references.md, "Rock fall" (Azzoni): with a rolling friction coefficient mu_r the rolling sphere
   // accelerates at A g (sin t - mu_r cos t), A = m r^2 / (I + m r^2) = 5/7. Here the lithology's
   // rolling friction is 0.2, distinct from its sliding friction mu = 1, which keeps the contact
   // from slipping. Tolerance 2%, as for pure rolling.

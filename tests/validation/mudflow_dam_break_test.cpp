@@ -1,4 +1,4 @@
-// Dam breaks against their closed forms (REFERENCES.md "Mud flow"): Faccanoni & Mangeney (2012)
+// Dam breaks against their closed forms (docs/references.md, "Mud flow"): Faccanoni & Mangeney (2012)
 // on an incline with Coulomb friction, and Ritter's frictionless flat case (issue 5: front
 // position within 5% at three times).
 //

@@ -1,4 +1,4 @@
-// The energy line (Heim's Fahrboeschung; REFERENCES.md "Mud flow"): a Coulomb mass released on a
+// The energy line (Heim's Fahrboeschung; docs/references.md, "Mud flow"): a Coulomb mass released on a
 // slope stops where its centre of mass has dropped H over a horizontal travel L with H / L = mu
 // (issue 5: within 5%). On planes Coulomb friction mu g cos(theta) over a slope length ds does
 // the work mu g dx over the horizontal dx, so the drop pays for mu times the horizontal travel.

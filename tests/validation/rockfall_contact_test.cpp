@@ -1,4 +1,4 @@
-// Fast-mode contacts against closed forms (REFERENCES.md, rock fall): vertical rebounds on flat
+// Fast-mode contacts against closed forms (docs/references.md, "Rock fall"): vertical rebounds on flat
 // ground reach e^(2n) h0 within 1% (paper 3.3 fast bounce), and a block sliding on a plane
 // (Coulomb friction mu) stops if and only if tan(slope) < mu, after v^2 / (2 g (mu cos - sin))
 // within 2%. Energy bookkeeping: what the rock loses is what the observer is told.
@@ -98,7 +98,7 @@ Slide slide(double slope_deg, double friction, double v0, bool spinning = true) 
   return result;
 }
 
-// Azzoni et al. 1995 (REFERENCES.md): a sphere rolling at v0 with rolling friction mu_r stops
+// Azzoni et al. 1995 (docs/references.md, "Rock fall"): a sphere rolling at v0 with rolling friction mu_r stops
 // after v0^2 / (2 A g cos t (mu_r - tan t)), A = 5/7; the rolling resistance and the vegetation
 // (none here) took its kinetic energy, translation and rotation, and the height it lost. A sphere
 // set down without spin starts to roll at 5/7 v0 (angular momentum about the contact point), so

@@ -1,4 +1,4 @@
-// Fast-mode flight against closed forms (REFERENCES.md, rock fall): free fall and projectile
+// Fast-mode flight against closed forms (docs/references.md, "Rock fall"): free fall and projectile
 // without drag within 1e-6 relative; with the sphere's quadratic drag (paper 3.2), the vertical
 // fall z(t) = z0 - (v_t^2 / g) ln cosh(g t / v_t) and the terminal velocity
 // v_t = sqrt(2 m g / (rho Cx A)) within 1%.

@@ -1,5 +1,5 @@
 // Air friction as the surface integral of paper 3.2 over the rock's samples, against closed
-// forms (REFERENCES.md, rock fall): over a sphere it is the quadratic drag of air_drag.hpp in
+// forms (docs/references.md, "Rock fall"): over a sphere it is the quadratic drag of air_drag.hpp in
 // every direction, a falling sphere reaches the terminal velocity sqrt(2 m g / (rho Cx pi r^2))
 // (issue 4: within 1%), an ellipsoid falls faster along its long axis in the ratio of its
 // frontal areas, and centrally symmetric rocks feel no drag torque.

@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Talus's mud-flow layers on avaAlr against AvaFrame com1DFA's peak fields.
 
-Usage: compare.py TALUS_OUT [--png DIR] [--shared DIR]
+Usage: compare.py TALUS_OUT [--png DIR] [--data DIR]
 
 TALUS_OUT is the --out folder of
-  build/talus mudflow --dem ../shared/data/tirol_alr/avaAlr.tif \
+  build/talus mudflow --dem data/tirol_alr/avaAlr.tif \
       --release validation/avaalr_com1dfa/release.vrt \
       --scenario validation/avaalr_com1dfa/scenario.toml --out TALUS_OUT
 Prints the comparison table of docs/validation.md ("Mud flow: code-to-code (AvaFrame
@@ -168,13 +168,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("talus_out", type=pathlib.Path)
     parser.add_argument("--png", type=pathlib.Path, help="folder for the difference maps and the footprint map")
-    parser.add_argument("--shared", type=pathlib.Path,
-                        default=pathlib.Path(__file__).resolve().parents[3] / "shared",
-                        help="the shared data folder (default: ../shared beside the repository)")
+    parser.add_argument("--data", type=pathlib.Path,
+                        default=pathlib.Path(__file__).resolve().parents[2] / "data",
+                        help="the folder of the real data sets (default: the repository's data/)")
     args = parser.parse_args()
 
-    reference_dir = args.shared / "data" / "avaframe_alr_com1dfa"
-    dem = gdal.Open(str(args.shared / "data" / "tirol_alr" / "avaAlr.tif"))
+    reference_dir = args.data / "avaframe_alr_com1dfa"
+    dem = gdal.Open(str(args.data / "tirol_alr" / "avaAlr.tif"))
     z = dem.ReadAsArray().astype(float)
     cell = dem.GetGeoTransform()[1]
     release_raster = gdal.Rasterize("/vsimem/release.tif", str(pathlib.Path(__file__).with_name("release.vrt")),

@@ -56,17 +56,17 @@ def zone_row(records, zone, total):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("talus_out", type=pathlib.Path)
-    parser.add_argument("--shared", type=pathlib.Path,
-                        default=pathlib.Path(__file__).resolve().parents[3] / "shared",
-                        help="the shared data folder (default: ../shared beside the repository)")
+    parser.add_argument("--data", type=pathlib.Path,
+                        default=pathlib.Path(__file__).resolve().parents[2] / "data",
+                        help="the folder of the real data sets (default: the repository's data/)")
     args = parser.parse_args()
     snapshots = args.talus_out / "particles.gpkg"
     if not snapshots.exists():
         print(f"side_channel_timing.py: {snapshots}: not found; run the case with --snapshots SECONDS", file=sys.stderr)
         sys.exit(2)
-    dem = args.shared / "data" / "tirol_alr" / "avaAlr.tif"
+    dem = args.data / "tirol_alr" / "avaAlr.tif"
     if not dem.exists():
-        print(f"side_channel_timing.py: {dem}: not found; pass the shared data folder with --shared", file=sys.stderr)
+        print(f"side_channel_timing.py: {dem}: not found; pass the data folder with --data", file=sys.stderr)
         sys.exit(2)
     geotransform = gdal.Open(str(dem)).GetGeoTransform()
     records = read_particles(snapshots, geotransform)

@@ -30,11 +30,11 @@ from osgeo import gdal
 from scipy import ndimage
 
 gdal.UseExceptions()
-gdal.SetConfigOption("GDAL_PAM_ENABLED", "NO")  # no .aux.xml beside the shared DEM
+gdal.SetConfigOption("GDAL_PAM_ENABLED", "NO")  # no .aux.xml beside the DEM in data/
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-DEM = os.path.join(ROOT, "..", "shared", "data", "tirol_alr", "avaAlr.tif")
+DEM = os.path.join(ROOT, "data", "tirol_alr", "avaAlr.tif")
 RELEASES = os.path.join(HERE, "releases.csv")
 SCENARIO = os.path.join(HERE, "scenario.toml")
 

@@ -1,4 +1,4 @@
-// Counter-based random numbers (DESIGN.md section 2, "same seed, same layers, whatever the
+// Counter-based random numbers (docs/architecture.md section 8, "same seed, same layers, whatever the
 // thread count"): every draw is a pure function of (seed, source, run, counter), so a
 // trajectory's numbers do not depend on which thread runs it or in which order.
 #pragma once

@@ -1,4 +1,4 @@
-// Errors the engine and the GIS boundary report, mapped by the CLI to exit codes (DESIGN.md 3):
+// Errors the engine and the GIS boundary report, mapped by the CLI to exit codes (docs/architecture.md section 3):
 // InputError -> 2 (bad usage or input), NumericalFailure -> 3, anything else -> 1.
 #pragma once
 

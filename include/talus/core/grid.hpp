@@ -1,4 +1,4 @@
-// Grid<T>: a raster of T in row-major flat storage with its GridSpec (DESIGN.md section 1).
+// Grid<T>: a raster of T in row-major flat storage with its GridSpec (docs/architecture.md section 1).
 #pragma once
 
 #include <cmath>

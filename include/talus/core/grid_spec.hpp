@@ -1,4 +1,4 @@
-// GridSpec: the georeferencing of a raster grid (DESIGN.md section 1).
+// GridSpec: the georeferencing of a raster grid (docs/architecture.md section 1).
 // The engine works in the CRS's metres and never interprets the CRS, which it carries as an
 // opaque WKT string. Cells are areas: cell (col, row) covers
 // [x0 + col dx, x0 + (col + 1) dx] x [y0 + (row + 1) dy, y0 + row dy] with dy < 0 (north up);

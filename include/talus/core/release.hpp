@@ -1,4 +1,4 @@
-// Where material is released (DESIGN.md section 3, --release): cells from a raster or
+// Where material is released (docs/architecture.md section 3, --release): cells from a raster or
 // polygons, and points. Rock fall starts one source per cell or point, with the conditions its
 // feature gives (release_conditions.hpp); mud flow releases the cells' depth.
 #pragma once

@@ -1,4 +1,4 @@
-// The stress cycle of one soil piston (paper 2.1, fig. 2; DESIGN.md section 2). Pressure p (Pa)
+// The stress cycle of one soil piston (paper 2.1, fig. 2; docs/architecture.md section 2). Pressure p (Pa)
 // against compression d (m, along the piston's axis, into the ground):
 //   elastic loading      p = k1 d                       while p < yield pressure Y,
 //   plastic loading      p = Y + k2 (d - Y / k1)        beyond it (k2 < k1),

@@ -1,4 +1,4 @@
-// CellCounts: an integer count per grid cell (DESIGN.md section 2, "Statistical maps", and
+// CellCounts: an integer count per grid cell (docs/architecture.md section 2, "Statistical maps", and
 // paper 3.4 "Gathering simulation data": passages and deposits). Additions saturate at the
 // largest uint32 instead of wrapping; saturating addition of non-negative integers is
 // associative, so merged counts are exact and independent of the merge order.

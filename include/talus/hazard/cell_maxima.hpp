@@ -1,7 +1,7 @@
-// CellMaxima: the largest value seen per grid cell (DESIGN.md section 2, "Statistical maps":
+// CellMaxima: the largest value seen per grid cell (docs/architecture.md section 2, "Statistical maps":
 // maximal kinetic energy and velocity). Stored as float, the precision of the layers; rounding
 // to float is monotone, so the maximum of rounded values is the rounded maximum and merges are
-// exact in any order. Every cell starts at 0 (never reached reads 0, DESIGN.md section 3), so
+// exact in any order. Every cell starts at 0 (never reached reads 0, docs/architecture.md section 3), so
 // values <= 0 and NaN leave a cell unchanged: this accumulator is for non-negative quantities.
 #pragma once
 

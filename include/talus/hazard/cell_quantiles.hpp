@@ -1,5 +1,5 @@
 // CellQuantiles: a LogHistogram per grid cell, created only for cells that receive a value
-// (DESIGN.md section 2, "Statistical maps": 95th percentiles of kinetic energy and jump height
+// (docs/architecture.md section 2, "Statistical maps": 95th percentiles of kinetic energy and jump height
 // over the passages through a cell). Memory: 4 bytes per cell for the index, plus, per reached
 // cell, one histogram whose window never exceeds the binning's bins. Merging is exact (integer
 // bin counts), so quantiles after any sequence of merges equal those of a single accumulation.

@@ -1,4 +1,4 @@
-// FixedPointSums: a sum per grid cell kept as an integer number of quanta (DESIGN.md section
+// FixedPointSums: a sum per grid cell kept as an integer number of quanta (docs/architecture.md section
 // 2, "Statistical maps": energy lost by friction and by ground deformation). Each added value
 // is rounded to the nearest quantum once, then sums are int64 additions, which are associative:
 // merged sums are bit-exact in any order, unlike floating-point sums. Overflow is guarded: a

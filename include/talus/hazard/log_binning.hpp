@@ -1,4 +1,4 @@
-// LogBinning: fixed logarithmic bins for the per-cell quantile estimator (DESIGN.md section 2,
+// LogBinning: fixed logarithmic bins for the per-cell quantile estimator (docs/architecture.md section 2,
 // "Statistical maps": 95th percentiles of kinetic energy and jump height over passages). Bin k
 // covers [min 10^(k/b), min 10^((k+1)/b)) for b bins per decade; values below min (zero,
 // negative, NaN) are underflow, values at or above the last edge are overflow. bin_of places a

@@ -1,5 +1,5 @@
 // LogHistogram: a bounded-memory estimate of one distribution over the fixed bins of a
-// LogBinning (DESIGN.md section 2, "Statistical maps": percentiles over passages without
+// LogBinning (docs/architecture.md section 2, "Statistical maps": percentiles over passages without
 // keeping every value). Counts live in a window of bins that grows to cover the values seen
 // (never more than the binning's bins), plus separate underflow and overflow counts. Merging
 // adds integer counts, so it is exact and order independent. quantile(q) finds the bin holding

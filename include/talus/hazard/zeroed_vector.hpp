@@ -1,4 +1,4 @@
-// ZeroedVector: storage for the per-cell arrays of the statistical map (DESIGN.md section 2,
+// ZeroedVector: storage for the per-cell arrays of the statistical map (docs/architecture.md section 2,
 // "Statistical maps"), which start at zero and are written only where trajectories pass. The
 // memory comes from calloc and value-initialisation writes nothing, so on systems that hand out
 // large blocks as untouched zero pages (Linux, via mmap) a per-cell array occupies memory only

@@ -1,4 +1,4 @@
-// The mud-flow layers (DESIGN.md section 3) gathered from the particles: each particle's volume
+// The mud-flow layers (docs/architecture.md section 3) gathered from the particles: each particle's volume
 // is spread over the DEM cells whose centres lie within its spreading radius, max(R_s, 1.5 x
 // the larger cell side) with R_s the smoothing radius its own depth is summed with
 // (flow_density.hpp: R inside the flow, up to 4 R where it thins), with kernel weights

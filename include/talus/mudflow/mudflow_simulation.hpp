@@ -1,4 +1,4 @@
-// `talus mudflow` in the engine (paper 4, DESIGN.md section 2): release the mud as smoothed
+// `talus mudflow` in the engine (paper 4, docs/architecture.md section 2): release the mud as smoothed
 // particles on the ground model, move them with the shallow-flow SPH equations and the chosen
 // rheology, adapt particle sizes and time steps (paper 4.2), entrain erodible material, deposit
 // stopped mud, and gather the mud-flow layers. Same seed and inputs, same result, whatever the

@@ -1,4 +1,4 @@
-// The smoothed particles of a mud flow (paper 4.1, DESIGN.md section 2 "Mud flow"), stored as a
+// The smoothed particles of a mud flow (paper 4.1, docs/architecture.md section 2 "Mud flow"), stored as a
 // structure of arrays for speed. Talus follows the shallow-flow form of the paper's particles:
 // each particle is a column of mud standing on the ground model. Its position is the column's
 // foot on the bilinear surface (x, y in the DEM's CRS, z the ground elevation there), its

@@ -1,4 +1,4 @@
-// Release of the mud (issue 5, DESIGN.md section 3 --release): each release cell's column of
+// Release of the mud (issue 5, docs/architecture.md section 3 --release): each release cell's column of
 // depth d (m) becomes particles of the chosen spacing, laid on a square lattice inside the cell
 // and jittered by counter-based random numbers of (seed, cell), so the same seed gives the same
 // particles whatever the thread count. A release point releases one DEM cell around it.

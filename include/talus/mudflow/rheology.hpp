@@ -1,4 +1,4 @@
-// Basal and internal resistance of the mud (paper 4.1 "viscous internal friction", DESIGN.md
+// Basal and internal resistance of the mud (paper 4.1 "viscous internal friction", docs/architecture.md
 // section 2 "contact and basal friction against the ground model"). Equations, units and the
 // ranges users meet: docs/mudflow.md, "Rheology".
 #pragma once
@@ -44,7 +44,7 @@ struct BasalContact {
   double vegetation_deperdition = 0;  // 1/m: the vegetation's c in c |u| u
 };
 
-// Basal resistance of the chosen rheology (docs/mudflow.md "Rheology"; DESIGN.md section 2):
+// Basal resistance of the chosen rheology (docs/mudflow.md "Rheology"; docs/architecture.md section 2):
 // coulomb mu N, voellmy mu N + rho0 g u^2 / xi, viscous 3 eta u / h, bingham tau_y + 3 eta u / h,
 // each plus the vegetation's c |u| u; mud_density rho0 (kg/m3), gravity g (m/s2).
 BasalResistance basal_resistance(const RheologyParameters& parameters, const BasalContact& contact,

@@ -1,4 +1,4 @@
-// Contact of the mud columns with the bilinear ground (paper 2.2 and 4.1, DESIGN.md section 2
+// Contact of the mud columns with the bilinear ground (paper 2.2 and 4.1, docs/architecture.md section 2
 // "contact ... against the ground model"; docs/mudflow.md "Ground contact"): every particle's foot
 // stays on the surface, its velocity in the surface's tangent plane, and a particle that leaves
 // the ground model's valid area is reported so the caller can count it as outflow.

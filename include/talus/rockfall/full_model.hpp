@@ -1,4 +1,4 @@
-// The paper's full rock-ground model (paper 2.1, 2.2, 3.1-3.3; DESIGN.md section 2): a rigid rock
+// The paper's full rock-ground model (paper 2.1, 2.2, 3.1-3.3; docs/architecture.md section 2): a rigid rock
 // (implicit surface, mass and inertia from its shape and density, orientation as a quaternion)
 // on the elasto-plastic piston carpet under its bounding box. Contacts: pistons whose top is
 // inside the rock are pushed back along their axis to its surface (bisection on the implicit

@@ -1,4 +1,4 @@
-// The piston carpet of paper 2.2 (DESIGN.md section 2): the refined ground model exists only as
+// The piston carpet of paper 2.2 (docs/architecture.md section 2): the refined ground model exists only as
 // a fine grid of soil pistons under the vertical projection of the rock's bounding box. Pistons
 // sit on a lattice anchored at the CRS origin (piston (i, j) at x = i s, y = j s for spacing s),
 // so a piston is the same object whichever carpet window holds it. Each piston stands along the

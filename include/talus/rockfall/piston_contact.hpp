@@ -1,4 +1,4 @@
-// The rock against the piston carpet (paper 3.3, steps 1-4; DESIGN.md section 2). Step 1: each
+// The rock against the piston carpet (paper 3.3, steps 1-4; docs/architecture.md section 2). Step 1: each
 // piston top, at its footprint, is tested against the rock's implicit function. Step 2: a top
 // inside the rock is pushed down its axis to the rock's surface, found by bisection. Step 3:
 // the piston responds by its stress cycle (stress_cycle.hpp) with the force that is minus the
@@ -104,7 +104,7 @@ double active_slope(const StressCycle& cycle, const PistonState& state);
 // l = |arm . normal| the centre's height above the contact plane, c_r = rolling mu N /
 // max(slip_speed, l |w_t*|): a rolling rock meets a resisting torque rolling mu N l, which for a
 // sphere gives the deceleration A g (rolling mu cos t - sin t), A = m r^2 / (I + m r^2), of
-// REFERENCES.md; rolling_resistance scales the touch's rolling friction coefficient.
+// docs/references.md, "Rock fall"; rolling_resistance scales the touch's rolling friction coefficient.
 // Returns the impulse to add to the momenta. With `touch_forces`, also each touch's Coulomb
 // friction force -c s (N, world, at its contact point; constant over the kick, so their sum is
 // the linear impulse over `duration`), in the touches' order; rolling resistance is a torque

@@ -1,5 +1,5 @@
 // A rigid rock rolling on the ground, for the fast bounce mode (paper 3.3's contact phase, with
-// rolling resistance after Azzoni et al. 1995, ../shared/REFERENCES.md): the share A of the
+// rolling resistance after Azzoni et al. 1995, docs/references.md, "Rock fall"): the share A of the
 // kinetic energy a rolling rock carries in translation, its rolling spin, and the change from
 // a bounce to rolling. Equations: docs/rockfall-fast.md, section 5.
 #pragma once

@@ -1,4 +1,4 @@
-// Blow-up detection for the full model's time steps (issue 4, Deliver 5; DESIGN.md section 3:
+// Blow-up detection for the full model's time steps (issue 4, Deliver 5; docs/architecture.md section 3:
 // "numerical failure that could not be recovered"). An explicit step that is too long for the
 // contact's stiffness multiplies the rock's energy at every step; the guard compares the energy
 // before and after a step with what the step may add (nothing: gravity is in the potential

@@ -1,4 +1,4 @@
-// One sampled trajectory kept for trajectories.gpkg (DESIGN.md section 3; issue 17, item 6): its
+// One sampled trajectory kept for trajectories.gpkg (docs/architecture.md section 3; issue 17, item 6): its
 // line, and at each vertex what a profile plot needs.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Tests of the counter-based random numbers (DESIGN.md section 3: same seed, same layers).
+// Tests of the counter-based random numbers (docs/architecture.md section 3: same seed, same layers).
 #include "talus/core/counter_random.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Tests of Grid<T>, GridSpec and combine (DESIGN.md section 1).
+// Tests of Grid<T>, GridSpec and combine (docs/architecture.md section 1).
 #include "talus/core/grid.hpp"
 
 #include <limits>

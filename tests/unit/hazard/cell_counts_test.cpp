@@ -1,4 +1,4 @@
-// Tests of CellCounts (DESIGN.md section 2, "Statistical maps": passages and deposits).
+// Tests of CellCounts (docs/architecture.md section 2, "Statistical maps": passages and deposits).
 #include "talus/hazard/cell_counts.hpp"
 
 #include <limits>

@@ -1,4 +1,4 @@
-// Tests of CellMaxima (DESIGN.md section 2, "Statistical maps": maximal energy and velocity).
+// Tests of CellMaxima (docs/architecture.md section 2, "Statistical maps": maximal energy and velocity).
 #include "talus/hazard/cell_maxima.hpp"
 
 #include <limits>

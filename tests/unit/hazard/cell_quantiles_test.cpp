@@ -1,4 +1,4 @@
-// Tests of CellQuantiles (DESIGN.md section 2, "Statistical maps": per-cell percentiles).
+// Tests of CellQuantiles (docs/architecture.md section 2, "Statistical maps": per-cell percentiles).
 #include "talus/hazard/cell_quantiles.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Tests of FixedPointSums (DESIGN.md section 2, "Statistical maps": energy losses).
+// Tests of FixedPointSums (docs/architecture.md section 2, "Statistical maps": energy losses).
 #include "talus/hazard/fixed_point_sums.hpp"
 
 #include <algorithm>

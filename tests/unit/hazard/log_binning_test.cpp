@@ -1,4 +1,4 @@
-// Tests of LogBinning (DESIGN.md section 2, "Statistical maps": quantile bins).
+// Tests of LogBinning (docs/architecture.md section 2, "Statistical maps": quantile bins).
 #include "talus/hazard/log_binning.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Tests of LogHistogram (DESIGN.md section 2, "Statistical maps": 95th percentiles over
+// Tests of LogHistogram (docs/architecture.md section 2, "Statistical maps": 95th percentiles over
 // passages with bounded memory).
 #include "talus/hazard/log_histogram.hpp"
 

@@ -1,4 +1,4 @@
-// Tests of ZeroedVector, the lazily zeroed storage of the per-cell statistics (DESIGN.md
+// Tests of ZeroedVector, the lazily zeroed storage of the per-cell statistics (docs/architecture.md
 // section 2, "Statistical maps").
 #include "talus/hazard/zeroed_vector.hpp"
 

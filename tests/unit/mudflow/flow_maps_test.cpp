@@ -1,4 +1,4 @@
-// Tests of FlowMaps (DESIGN.md section 3, mud-flow layers): volume-conserving spreading of the
+// Tests of FlowMaps (docs/architecture.md section 3, mud-flow layers): volume-conserving spreading of the
 // particles onto the DEM cells, depth normal to the ground, maxima, arrival time, nodata.
 #include "talus/mudflow/flow_maps.hpp"
 

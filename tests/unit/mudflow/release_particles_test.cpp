@@ -1,4 +1,4 @@
-// Tests of release_particles (issue 5, DESIGN.md section 3 --release): released mass, the
+// Tests of release_particles (issue 5, docs/architecture.md section 3 --release): released mass, the
 // lattice and its jitter, seeds, release points and the valid area.
 #include "talus/mudflow/release_particles.hpp"
 

@@ -1,5 +1,5 @@
 // Tests of the rock-fall statistical map (paper 3.4, "Gathering simulation data"; layers of
-// DESIGN.md section 3; docs/hazard-statistics.md): grid walk, per-passage statistics, sources
+// docs/architecture.md section 3; docs/hazard-statistics.md): grid walk, per-passage statistics, sources
 // per cell and the reach probability over their rocks, deposits, units, nodata, and merges that
 // are bit-identical to a single accumulation whatever the split and the order.
 #include "talus/rockfall/rockfall_statistics.hpp"

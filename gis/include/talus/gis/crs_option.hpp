@@ -1,4 +1,4 @@
-// The --crs option (DESIGN.md section 3): assigns a CRS to inputs that lack one or carry a
+// The --crs option (docs/architecture.md section 3): assigns a CRS to inputs that lack one or carry a
 // wrong one. "EPSG:nnnn", any WKT or PROJ string OGR understands, or "local" for local metric
 // coordinates with no CRS at all.
 #pragma once

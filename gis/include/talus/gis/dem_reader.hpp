@@ -1,4 +1,4 @@
-// Reading the DEM (DESIGN.md section 3): the grid every other input is aligned onto.
+// Reading the DEM (docs/architecture.md section 3): the grid every other input is aligned onto.
 #pragma once
 
 #include <filesystem>
@@ -19,7 +19,7 @@ struct DemInput {
   std::vector<std::string> notes;    // what was done to the file on the way in
 };
 
-// Reads a DEM and applies the CRS rules of DESIGN.md section 3:
+// Reads a DEM and applies the CRS rules of docs/architecture.md section 3:
 // - --crs assigns a CRS (or "local"); without it a DEM with no CRS is refused;
 // - a geographic CRS whose coordinates are plainly metres is refused;
 // - a geographic DEM (degrees) is reprojected to its UTM zone, and a note says so;

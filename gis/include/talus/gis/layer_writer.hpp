@@ -1,4 +1,4 @@
-// Output layers (DESIGN.md section 3): Float32 Cloud Optimized GeoTIFFs on the DEM's grid and
+// Output layers (docs/architecture.md section 3): Float32 Cloud Optimized GeoTIFFs on the DEM's grid and
 // CRS, one nodata value, band description and unit, software version and scenario in the
 // metadata, statistics, and a QML style beside each so QGIS opens it styled.
 #pragma once

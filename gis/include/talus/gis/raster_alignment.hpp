@@ -1,4 +1,4 @@
-// Aligning a lithology, vegetation or release raster onto the DEM's grid (DESIGN.md section
+// Aligning a lithology, vegetation or release raster onto the DEM's grid (docs/architecture.md section
 // 3): another CRS, resolution or extent is warped with GDALWarp; class rasters use the
 // nearest cell (or the most frequent class where several source cells fall in one DEM
 // cell), continuous rasters bilinear interpolation.

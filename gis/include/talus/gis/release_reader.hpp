@@ -1,4 +1,4 @@
-// Reading --release (DESIGN.md section 3): a raster (non-zero cells are sources, the value is
+// Reading --release (docs/architecture.md section 3): a raster (non-zero cells are sources, the value is
 // a depth in metres and negative values count as depths too) or a vector layer through OGR
 // (points, or polygons rasterized onto the DEM grid, with an optional `depth` attribute and,
 // for rock fall, the rock-fall attributes of release_attributes.hpp), reprojected to the DEM's

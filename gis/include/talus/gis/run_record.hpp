@@ -1,4 +1,4 @@
-// run.json (DESIGN.md section 3): what a run did, for whoever finds its layers later: software
+// run.json (docs/architecture.md section 3): what a run did, for whoever finds its layers later: software
 // version, command line, inputs (path, size, CRS, SHA-256 checksum), every resolved parameter,
 // seed, threads, counts and wall-clock time per phase. Rock fall and mud flow fill it alike.
 #pragma once

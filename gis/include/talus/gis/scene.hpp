@@ -1,4 +1,4 @@
-// The scene (DESIGN.md section 1, "data flows one way"): the user's files read, checked and
+// The scene (docs/architecture.md section 1, "data flows one way"): the user's files read, checked and
 // aligned onto the DEM grid, ready to become the engine's ground model and release set.
 #pragma once
 

@@ -1,4 +1,4 @@
-// trajectories.gpkg (DESIGN.md section 3; issue 17, item 6): the sampled rock-fall trajectories
+// trajectories.gpkg (docs/architecture.md section 3; issue 17, item 6): the sampled rock-fall trajectories
 // as 3D lines with the time since release as M, one feature per trajectory with its run, source,
 // release feature, stop reason, maximum energy and runout length; a second layer
 // "trajectory_vertices" with each vertex's time, distance along the path, speed, energy and jump
