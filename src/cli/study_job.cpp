@@ -22,6 +22,7 @@
 #include "study_units.hpp"
 #include "talus/core/byte_stream.hpp"
 #include "talus/core/errors.hpp"
+#include "talus/gis/build_commit.hpp"
 #include "talus/gis/scene.hpp"
 
 namespace talus::cli {
@@ -231,6 +232,7 @@ nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choi
                                     const nlohmann::ordered_json& region, const nlohmann::ordered_json& sources) {
   nlohmann::ordered_json record;
   record["talus_version"] = TALUS_VERSION;
+  record["git_commit"] = gis::git_commit();
   record["command_line"] = choices.command_line;
   record["study"] = std::filesystem::absolute(study.file).string();
   nlohmann::ordered_json scenarios = nlohmann::ordered_json::array();

@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 #include <ogrsf_frmts.h>
 
-#include "raster_fixtures.hpp"
 #include "layer_contract.hpp"
+#include "raster_fixtures.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 

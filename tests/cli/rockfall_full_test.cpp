@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "raster_fixtures.hpp"
 #include "layer_contract.hpp"
+#include "raster_fixtures.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 

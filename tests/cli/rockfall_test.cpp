@@ -9,8 +9,8 @@
 #include <map>
 #include <tuple>
 
-#include "raster_fixtures.hpp"
 #include "layer_contract.hpp"
+#include "raster_fixtures.hpp"
 #include "run_talus.hpp"
 #include "test_paths.hpp"
 

@@ -13,9 +13,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "raster_fixtures.hpp"
 #include "layer_contract.hpp"
+#include "raster_fixtures.hpp"
 #include "run_talus.hpp"
+#include "talus/gis/build_commit.hpp"
 #include "test_paths.hpp"
 
 namespace talus {
@@ -104,6 +105,8 @@ TEST(Study, EachScenarioEqualsItsSubcommandBitForBit) {
 
   std::ifstream record_file(folder / "out/study.json");
   const nlohmann::json record = nlohmann::json::parse(record_file);
+  EXPECT_EQ(record["talus_version"], TALUS_VERSION);
+  EXPECT_EQ(record["git_commit"], std::string(gis::git_commit()));
   ASSERT_EQ(record["scenarios"].size(), 2u);
   EXPECT_EQ(record["scenarios"][0]["name"], "blocks");
   EXPECT_EQ(record["scenarios"][0]["process"], "rockfall");
