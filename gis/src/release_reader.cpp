@@ -47,10 +47,13 @@ ReleaseSet release_from_raster(const std::filesystem::path& path, const Grid<dou
   GridSpec spec = dem.spec();
   spec.nodata = 0.0;
   release.depth = Grid<float>(spec, 0.0f);
+  bool every_value_negative = true;
   for (std::size_t i = 0; i < aligned.values.size(); ++i) {
     if (!aligned.values.is_valid(i) || aligned.values[i] == 0.0) continue;
     release.depth[i] = static_cast<float>(depth.uniform ? *depth.uniform : std::abs(aligned.values[i]));
+    every_value_negative = every_value_negative && aligned.values[i] < 0.0;
   }
+  release.depths_from_surface_lowering = !depth.uniform && every_value_negative;
   if (release.cell_count() == 0) throw InputError(name + ": has no release cell (every value is 0 or nodata): empty release");
   drop_cells_outside(release.depth, dem);
   if (release.cell_count() == 0) throw InputError(name + ": every release cell lies outside the DEM's valid area");

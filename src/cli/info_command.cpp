@@ -8,6 +8,7 @@
 #include <map>
 
 #include "commands.hpp"
+#include "release_convention.hpp"
 #include "talus/gis/scene.hpp"
 
 namespace talus::cli {
@@ -99,9 +100,13 @@ void print_release(const gis::Scene& scene) {
       low = std::min(low, release.depth[i]);
       high = std::max(high, release.depth[i]);
     }
-    std::printf("  cells      %zu, area %.0f m2, depth %.3g .. %.3g m, volume %.4g m3\n", release.cell_count(),
-                release.area(), static_cast<double>(low), static_cast<double>(high), release.volume());
+    std::printf("  cells      %zu, area %.0f m2, depth %.3g .. %.3g m\n", release.cell_count(), release.area(),
+                static_cast<double>(low), static_cast<double>(high));
   }
+  // As `talus mudflow` reads the depths by default ([mud] release_thickness = auto).
+  const ReleaseConvention convention =
+      release_convention(scene.ground_model(), release, ReleaseThicknessChoice::automatic);
+  if (convention.volume > 0.0) std::printf("  mud flow   %s\n", release_convention_text(convention).c_str());
 }
 
 int run_info(const InfoOptions& options) {

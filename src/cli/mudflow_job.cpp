@@ -12,6 +12,7 @@
 #include "intensity_layer.hpp"
 #include "mudflow_layers.hpp"
 #include "mudflow_window.hpp"
+#include "release_convention.hpp"
 #include "run_project.hpp"
 #include "unfinished_flow.hpp"
 #include "talus/core/errors.hpp"
@@ -157,6 +158,9 @@ void mudflow_job(MudflowOptions& o, ParameterTable& table, bool adaptive_given, 
   }
   const gis::Scene& ground_scene = tile ? *tile : scene;
   const GroundModel ground = ground_scene.ground_model();
+  const ReleaseSet& release = window_release ? *window_release : *scene.release;
+  const ReleaseConvention convention = release_convention(ground, release, o.release_thickness_choice);
+  o.settings.release_thickness = convention.thickness;
   const double read_seconds = seconds_since(start);
   for (const auto& note : scene.notes) output.say("note: " + note);
   for (const auto& problem : scene.problems) output.say("problem: " + problem);
@@ -167,11 +171,11 @@ void mudflow_job(MudflowOptions& o, ParameterTable& table, bool adaptive_given, 
   output.say(printf_text("Mud flow from %zu release cells and %zu points (%s: %s, particle size %g m, adaptive %s) ...",
               scene.release->cell_count(), scene.release->points.size(), o.material.c_str(), o.rheology.c_str(),
               o.settings.particle_size, o.settings.adaptive ? "on" : "off"));
+  output.say("Release: " + release_convention_text(convention));
 
   const auto simulate_start = std::chrono::steady_clock::now();
   const Grid<float>* erodible = ground_scene.erodible ? &*ground_scene.erodible : nullptr;
-  MudflowResult result = run_mudflow(ground, window_release ? *window_release : *scene.release, erodible, o.settings,
-                                     &output.progress);
+  MudflowResult result = run_mudflow(ground, release, erodible, o.settings, &output.progress);
   if (window.window) result.layers = whole_region_layers(result.layers, scene.dem.elevation);
   const double simulate_seconds = seconds_since(simulate_start);
   const std::vector<std::string> halo_problems = halo_outflow_problems(result, window.halo);
@@ -183,6 +187,7 @@ void mudflow_job(MudflowOptions& o, ParameterTable& table, bool adaptive_given, 
                                 o.snapshot_start_seconds);
   }
   record_run(record, o, scene, table, result, halo_problems);
+  record.set("release", release_convention_record(convention));
   record.set("tiles", window_record(window));
   if (intensity) record.set("intensity", intensity_entry);
   record.add_timing("read_inputs", read_seconds);

@@ -51,9 +51,9 @@ void validate(MudflowOptions& o, const ParameterTable& table) {
   table.require(rheology == "viscous" || rheology == "coulomb" || rheology == "voellmy" || rheology == "bingham", "rheology",
                 "rheology", rheology, "use viscous, coulomb, voellmy or bingham");
   o.settings.rheology.rheology = parse_rheology(rheology);
-  table.require(o.release_thickness == "normal" || o.release_thickness == "vertical", "mud", "release_thickness",
-                o.release_thickness, "use normal or vertical");
-  o.settings.release_thickness = parse_release_thickness(o.release_thickness);
+  table.require(o.release_thickness == "auto" || o.release_thickness == "normal" || o.release_thickness == "vertical",
+                "mud", "release_thickness", o.release_thickness, "use auto, normal or vertical");
+  o.release_thickness_choice = parse_release_thickness(o.release_thickness);
   table.require(o.pressure == "normal" || o.pressure == "vertical", "mud", "pressure", o.pressure,
                 "use normal or vertical");
   o.settings.pressure = parse_pressure_column(o.pressure);
@@ -108,7 +108,8 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
   table.add("mud", "gravity", "m/s2", "gravitational acceleration", &s.gravity, Range{0.1, 30});
   table.add("mud", "particle_size", "m", "spacing of the finest particles", &s.particle_size, Range{0.05, 100, false, false});
   table.add("mud", "release_thickness", "",
-            "how a release depth is measured: normal (to the ground, the thin-layer convention) or vertical",
+            "how a release depth is measured: normal (to the ground, the thin-layer convention), vertical, or auto "
+            "(vertical for a raster of negative depths, a DEM of difference; normal otherwise)",
             &o.release_thickness);
   table.add("mud", "pressure", "",
             "whose weight the pressure in the mud is: normal (the thin-layer column normal to the ground, the "

@@ -29,7 +29,9 @@ struct MudflowOptions {
   std::string material = MudflowMaterials::built_in().default_name();  // --material, [mud] material
   std::string rheology = to_string(RheologyParameters{}.rheology);
   std::string adaptive = "on";  // --adaptive on|off, into settings.adaptive
-  std::string release_thickness = to_string(ReleaseThickness::normal);  // into settings.release_thickness
+  std::string release_thickness = "auto";  // [mud] release_thickness, parsed into the choice below
+  // Resolved into settings.release_thickness by the job once the release is read.
+  ReleaseThicknessChoice release_thickness_choice = ReleaseThicknessChoice::automatic;
   std::string pressure = to_string(PressureColumn::normal);             // into settings.pressure
   double release_depth = 0;            // m: --depth, [mud] release_depth; 0: the release file's depths
   std::string depth_field = "depth";   // --depth-field, [mud] depth_field

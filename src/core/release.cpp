@@ -11,7 +11,7 @@ std::size_t ReleaseSet::cell_count() const {
 
 double ReleaseSet::area() const { return static_cast<double>(cell_count()) * depth.spec().cell_area(); }
 
-double ReleaseSet::volume() const {
+double ReleaseSet::vertical_volume() const {
   double sum = 0;
   for (std::size_t i = 0; i < depth.size(); ++i) sum += depth[i] > 0.0f ? static_cast<double>(depth[i]) : 0.0;
   return sum * depth.spec().cell_area();
@@ -32,6 +32,7 @@ ReleaseSet ReleaseSet::window(const GridSpec& spec) const {
   part.depth = window_of(depth, spec);
   part.points = points;
   part.condition_sets = condition_sets;
+  part.depths_from_surface_lowering = depths_from_surface_lowering;
   if (condition_set_of_cell.size() > 0) part.condition_set_of_cell = window_of(condition_set_of_cell, spec);
   if (feature_of_cell.size() > 0) part.feature_of_cell = window_of(feature_of_cell, spec);
   return part;

@@ -19,7 +19,6 @@ struct CellLattice {
   int columns = 1, rows = 1;
   double step_x = 0, step_y = 0;  // m
   double support_radius = 0;      // m
-  double cell_area = 0;           // m2
 };
 
 // n = max(1, round(cell side / spacing)) places per axis; kernel support from the lattice step.
@@ -30,7 +29,6 @@ CellLattice lattice_for(const GridSpec& spec, double spacing) {
   lattice.step_x = spec.cell_width() / lattice.columns;
   lattice.step_y = spec.cell_height() / lattice.rows;
   lattice.support_radius = kSupportPerSpacing * std::sqrt(lattice.step_x * lattice.step_y);
-  lattice.cell_area = spec.cell_area();
   return lattice;
 }
 
@@ -105,35 +103,22 @@ void check_layout(const ReleaseLayout& layout) {
   if (!(layout.jitter >= 0.0 && layout.jitter <= 1.0)) throw InputError("mud flow: release jitter must be in [0, 1]");
 }
 
-// rho0 d A (kg) of a cell-sized column of depth d (m) at DEM cell (col, row), divided by cos(theta)
-// there when d is the thickness normal to the ground.
-double column_mass(const GroundModel& ground, const ReleaseLayout& layout, const CellLattice& lattice, int col, int row,
-                   double depth) {
-  const double vertical = layout.mud_density * depth * lattice.cell_area;
-  if (layout.thickness == ReleaseThickness::vertical) return vertical;
+// d A (m3) of a cell-sized column of depth d (m) at DEM cell (col, row), divided by cos(theta) there
+// when d is the thickness normal to the ground (docs/inputs.md, "How a mud-flow depth is measured").
+double column_volume(const GroundModel& ground, ReleaseThickness thickness, int col, int row, double depth) {
+  const double vertical = depth * ground.spec().cell_area();
+  if (thickness == ReleaseThickness::vertical) return vertical;
   return vertical / cell_cos_slope(ground, col, row);
 }
 
-}  // namespace
-
-ReleaseThickness parse_release_thickness(const std::string& text) {
-  if (text == "normal") return ReleaseThickness::normal;
-  if (text == "vertical") return ReleaseThickness::vertical;
-  throw InputError("unknown release thickness '" + text + "': expected normal or vertical");
-}
-
-const char* to_string(ReleaseThickness thickness) {
-  return thickness == ReleaseThickness::normal ? "normal" : "vertical";
-}
-
-// Cells in index order, then points (docs/architecture.md section 3 --release), each a column of rho0 d A.
-ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& release, const ReleaseLayout& layout) {
-  check_layout(layout);
+// Calls column(x, y, col, row, depth, source) for each released column: the cells with depth > 0
+// on valid DEM nodes in index order (source: the cell's index on the whole grid, so that a
+// window's particles are the whole run's, issue 19), then the points with depth > 0 on a valid
+// cell, each centred on itself over the cell under it (source: whole cell count + point index).
+template <typename Column>
+void for_each_released_column(const GroundModel& ground, const ReleaseSet& release, Column column) {
   const GridSpec& spec = ground.spec();
-  check_particle_count(spec, release, layout);
   const Grid<double>& dem = ground.elevation_grid();
-  const CellLattice lattice = lattice_for(spec, layout.spacing);
-  ParticleSet particles;
   if (release.depth.size() > 0) {
     require_same_grid(release.depth.spec(), spec, "mud-flow release depth and DEM");
     for (int row = 0; row < spec.height; ++row) {
@@ -141,9 +126,7 @@ ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& relea
         const std::size_t cell = dem.index(col, row);
         const double depth = static_cast<double>(release.depth[cell]);
         if (!(depth > 0.0) || !dem.is_valid(cell)) continue;
-        // Numbered on the whole grid, so that a window's particles are the whole run's (issue 19).
-        release_column(ground, layout, lattice, spec.node_x(col), spec.node_y(row),
-                       column_mass(ground, layout, lattice, col, row, depth), spec.whole_index(cell), particles);
+        column(spec.node_x(col), spec.node_y(row), col, row, depth, spec.whole_index(cell));
       }
     }
   }
@@ -154,10 +137,52 @@ ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& relea
     if (!(col_at > -0.5 && col_at < spec.width - 0.5 && row_at > -0.5 && row_at < spec.height - 0.5)) continue;
     const int col = static_cast<int>(std::lround(col_at)), row = static_cast<int>(std::lround(row_at));
     if (!dem.is_valid(col, row)) continue;
-    release_column(ground, layout, lattice, point.x, point.y, column_mass(ground, layout, lattice, col, row, point.depth),
-                   spec.whole().cell_count() + k, particles);
+    column(point.x, point.y, col, row, point.depth, spec.whole().cell_count() + k);
   }
+}
+
+}  // namespace
+
+ReleaseThicknessChoice parse_release_thickness(const std::string& text) {
+  if (text == "auto") return ReleaseThicknessChoice::automatic;
+  if (text == "normal") return ReleaseThicknessChoice::normal;
+  if (text == "vertical") return ReleaseThicknessChoice::vertical;
+  throw InputError("unknown release thickness '" + text + "': expected auto, normal or vertical");
+}
+
+const char* to_string(ReleaseThickness thickness) {
+  return thickness == ReleaseThickness::normal ? "normal" : "vertical";
+}
+
+const char* to_string(ReleaseThicknessChoice choice) {
+  return choice == ReleaseThicknessChoice::automatic ? "auto" : choice == ReleaseThicknessChoice::normal ? "normal" : "vertical";
+}
+
+// Cells in index order, then points (docs/architecture.md section 3 --release), each a column of rho0 d A.
+ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& release, const ReleaseLayout& layout) {
+  check_layout(layout);
+  check_particle_count(ground.spec(), release, layout);
+  const CellLattice lattice = lattice_for(ground.spec(), layout.spacing);
+  ParticleSet particles;
+  for_each_released_column(ground, release, [&](double x, double y, int col, int row, double depth, std::uint64_t source) {
+    const double mass = layout.mud_density * column_volume(ground, layout.thickness, col, row, depth);
+    release_column(ground, layout, lattice, x, y, mass, source, particles);
+  });
   return particles;
+}
+
+double release_volume(const GroundModel& ground, const ReleaseSet& release, ReleaseThickness thickness) {
+  double volume = 0;
+  for_each_released_column(ground, release, [&](double, double, int col, int row, double depth, std::uint64_t) {
+    volume += column_volume(ground, thickness, col, row, depth);
+  });
+  return volume;
+}
+
+ReleaseThickness thickness_for_release(ReleaseThicknessChoice choice, const ReleaseSet& release) {
+  if (choice == ReleaseThicknessChoice::normal) return ReleaseThickness::normal;
+  if (choice == ReleaseThicknessChoice::vertical) return ReleaseThickness::vertical;
+  return release.depths_from_surface_lowering ? ReleaseThickness::vertical : ReleaseThickness::normal;
 }
 
 }  // namespace talus

@@ -38,6 +38,10 @@ TEST(Info, SummarisesTheMudflowReleasePolygon) {
       test::run_talus({"info", (sample / "dem.tif").string(), "--release", (sample / "mudflow_release.gpkg").string()}, work);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   expect_contains(result.out, "depth 1.8 .. 1.8 m");
+  // Issue 37, item 4: the convention a mud flow reads the depths with, and both volumes.
+  expect_contains(result.out, "mud flow   depths read as thickness normal to the ground (auto: depths given as "
+                              "positive values or attributes): 17");
+  expect_contains(result.out, "as vertical depths they would give 14445 m3");
   expect_contains(result.out, "lithology: none given; default class 4");
 }
 

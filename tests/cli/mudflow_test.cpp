@@ -142,6 +142,12 @@ TEST_F(SampleMudflow, RecordsCountsAndConservesVolume) {
   // sum 1.8 m x 25 m2 / cos(theta) = 17,310 m3 with the slopes of GDAL's gdaldem (Horn's
   // method; 14,445 m3 as vertical columns). Talus takes the slope's central differences: 0.5%.
   EXPECT_NEAR(record["volumes_m3"]["released"].get<double>(), 17310.0, 0.005 * 17310.0);
+  // Issue 37, item 4: run.json says how the depths were read and what the other reading gives.
+  EXPECT_EQ(record["release"]["depth_measured"], "normal");
+  EXPECT_EQ(record["release"]["release_thickness"], "auto");
+  EXPECT_NEAR(record["release"]["volume_m3"]["normal"].get<double>(), record["volumes_m3"]["released"].get<double>(),
+              1e-6 * 17310.0);
+  EXPECT_NEAR(record["release"]["volume_m3"]["vertical"].get<double>(), 1.8 * 8025.0, 1e-3);
   // Issue 5: deposited volume equals released plus entrained volume within 2 %.
   EXPECT_NEAR(volume_balance(record), 0.0, 0.02);
   // The deposit layer holds the volume left on the DEM as depths normal to the ground, so depth
@@ -297,7 +303,18 @@ TEST(MudflowStHelens, WritesEveryLayerInLocalCoordinates) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(test::layer_contract_problems("mudflow", root / "out", data / "pre_runout_DEM.asc"), test::kNoProblems);
   const nlohmann::json record = read_json(root / "out" / "run.json");
-  EXPECT_GT(record["volumes_m3"]["released"].get<double>(), 0.0);
+  // Issue 37, item 4: the raster's depths are negative numbers, the surface lowering of a DEM of
+  // difference, so they are read as vertical depths: the released volume is the sum of |d| A.
+  double lowering = 0;  // m3
+  for (const float depth : test::read_band(data / "landslide_depth.asc")) {
+    if (depth < 0.0f && depth != -9999.0f) lowering -= static_cast<double>(depth) * 100.0;
+  }
+  EXPECT_EQ(record["release"]["depth_measured"], "vertical");
+  EXPECT_NE(record["release"]["reason"].get<std::string>().find("DEM of difference"), std::string::npos);
+  EXPECT_NEAR(record["release"]["volume_m3"]["vertical"].get<double>(), lowering, 1e-6 * lowering);
+  EXPECT_NEAR(record["volumes_m3"]["released"].get<double>(), lowering, 1e-6 * lowering);
+  EXPECT_GT(record["release"]["volume_m3"]["normal"].get<double>(), lowering);
+  EXPECT_NE(result.out.find("Release: depths read as vertical depths"), std::string::npos) << result.out;
   EXPECT_NEAR(volume_balance(record), 0.0, 0.02);
   GDALAllRegister();
   GDALDatasetUniquePtr layer(GDALDataset::Open((root / "out" / "flow_depth_max.tif").c_str(), GDAL_OF_RASTER));

@@ -223,7 +223,8 @@ TEST_F(ReleaseLayers, BurnsPolygonsWithTheirDepth) {
   const ReleaseSet release = read_release(folder_ / "polygon.gpkg", dem_, CrsOption{});
   EXPECT_EQ(release.cell_count(), 100u);
   EXPECT_NEAR(release.area(), 10000.0, 1e-6);
-  EXPECT_NEAR(release.volume(), 25000.0, 1e-3);
+  EXPECT_NEAR(release.vertical_volume(), 25000.0, 1e-3);
+  EXPECT_FALSE(release.depths_from_surface_lowering);  // an attribute's sign says nothing of how it was measured
 }
 
 TEST_F(ReleaseLayers, ReprojectsPointsToTheDemCrs) {
@@ -268,7 +269,12 @@ TEST_F(ReleaseLayers, ReadsARasterOfNegativeDepths) {
   write_raster(folder_ / "depth.tif", depth);
   const ReleaseSet release = read_release(folder_ / "depth.tif", dem_, CrsOption{});
   EXPECT_EQ(release.cell_count(), 20u);
-  EXPECT_NEAR(release.volume(), 20 * 100 * 1.5, 1e-6);
+  EXPECT_NEAR(release.vertical_volume(), 20 * 100 * 1.5, 1e-6);
+  // The surface lowering of a DEM of difference: `auto` reads it as vertical (docs/inputs.md).
+  EXPECT_TRUE(release.depths_from_surface_lowering);
+  depth.value = [](int c, int r) { return (c < 5 && r < 4) ? 1.5 : 0.0; };
+  write_raster(folder_ / "positive.tif", depth);
+  EXPECT_FALSE(read_release(folder_ / "positive.tif", dem_, CrsOption{}).depths_from_surface_lowering);
 }
 
 TEST(Scene, NamesUnknownLithologyCodes) {

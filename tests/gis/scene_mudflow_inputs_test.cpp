@@ -117,7 +117,7 @@ TEST_F(MudflowRelease, RefusesPolygonsWithoutADepthAttribute) {
 
   // Rock fall takes the same layer (1 m where no depth is given).
   inputs_.release_needs_depth = false;
-  EXPECT_NEAR(load_scene(inputs_).release->volume(), 100 * 100 * 1.0, 1e-6);
+  EXPECT_NEAR(load_scene(inputs_).release->vertical_volume(), 100 * 100 * 1.0, 1e-6);
 }
 
 TEST_F(MudflowRelease, RefusesAFeatureOfZeroDepth) {
@@ -131,13 +131,13 @@ TEST_F(MudflowRelease, RefusesAFeatureOfZeroDepth) {
 TEST_F(MudflowRelease, AcceptsDepthsFromAttributesAndRasters) {
   test::write_vector(folder_ / "depth.gpkg", "EPSG:32632", {{kSquare, -1.8}}, true);
   inputs_.release = folder_ / "depth.gpkg";
-  EXPECT_NEAR(load_scene(inputs_).release->volume(), 100 * 100 * 1.8, 1e-3);  // Float32 depths: 1e-3 m3
+  EXPECT_NEAR(load_scene(inputs_).release->vertical_volume(), 100 * 100 * 1.8, 1e-3);  // Float32 depths: 1e-3 m3
 
   RasterFixture depth;
   depth.value = [](int c, int r) { return (c < 5 && r < 4) ? -1.5 : 0.0; };
   write_raster(folder_ / "depth.tif", depth);
   inputs_.release = folder_ / "depth.tif";
-  EXPECT_NEAR(load_scene(inputs_).release->volume(), 20 * 100 * 1.5, 1e-6);
+  EXPECT_NEAR(load_scene(inputs_).release->vertical_volume(), 20 * 100 * 1.5, 1e-6);
 }
 
 }  // namespace

@@ -33,10 +33,14 @@ struct ReleaseSet {
   // A vector release: per cell the FID of the polygon that covers it (kNoReleaseFeature: none),
   // so that results join to the release layer. Empty for a raster release.
   Grid<std::int64_t> feature_of_cell;
+  // A raster release whose every depth was a negative number: the surface lowering of a DEM of
+  // difference (post-event minus pre-event), whose depths are vertical (docs/inputs.md, "How a
+  // mud-flow depth is measured"). The depths above are their magnitudes.
+  bool depths_from_surface_lowering = false;
 
   std::size_t cell_count() const;    // cells with depth > 0
   double area() const;               // m2 covered by release cells
-  double volume() const;             // m3: sum of depth x cell area
+  double vertical_volume() const;    // m3: sum of depth x cell area, the depths taken as vertical
   std::size_t source_count() const { return cell_count() + points.size(); }
   ReleaseConditions cell_conditions(int col, int row) const;  // those of the cell's set (empty: none)
   std::int64_t cell_feature(int col, int row) const;          // the covering polygon's FID, or kNoReleaseFeature

@@ -21,9 +21,16 @@ enum class ReleaseThickness {
   normal,    // normal to the ground: the column's thickness, as the flow depths are
   vertical,  // vertically: the height of the column over the horizontal cell
 };
-// "normal", "vertical"; throws InputError naming the text otherwise.
-ReleaseThickness parse_release_thickness(const std::string& text);
-const char* to_string(ReleaseThickness thickness);
+const char* to_string(ReleaseThickness thickness);  // "normal", "vertical"
+
+// What the user asked for ([mud] release_thickness): one convention, or `auto`, which takes a
+// raster of negative depths (the surface lowering of a DEM of difference) as vertical and every
+// other release as normal to the ground.
+enum class ReleaseThicknessChoice { automatic, normal, vertical };
+// "auto", "normal", "vertical"; throws InputError naming the text otherwise.
+ReleaseThicknessChoice parse_release_thickness(const std::string& text);
+const char* to_string(ReleaseThicknessChoice choice);
+ReleaseThickness thickness_for_release(ReleaseThicknessChoice choice, const ReleaseSet& release);
 
 struct ReleaseLayout {
   double spacing = 2.5;          // m: particle spacing (the particle size)
@@ -45,5 +52,10 @@ struct ReleaseLayout {
 // ground model's valid area release nothing). release.depth must be on the DEM grid (or
 // empty); throws GridMismatch otherwise and InputError for a layout out of range.
 ParticleSet release_particles(const GroundModel& ground, const ReleaseSet& release, const ReleaseLayout& layout);
+
+// The volume (m3) of the release's columns under a convention: d A per released cell, divided by
+// cos(theta) at the cell's centre for the thickness normal to the ground; a point counts the cell
+// under it. The volume release_particles releases, but for places that fall off the ground.
+double release_volume(const GroundModel& ground, const ReleaseSet& release, ReleaseThickness thickness);
 
 }  // namespace talus

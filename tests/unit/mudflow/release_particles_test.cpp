@@ -46,7 +46,7 @@ TEST(ReleaseParticles, MassIsDensityTimesVolumeAndParticlesRestOnTheGround) {
     const ParticleSet particles = release_particles(ground, release, layout);
     const int n = std::max(1, static_cast<int>(std::lround(5.0 / spacing)));
     ASSERT_EQ(particles.size(), static_cast<std::size_t>(21 * n * n));
-    const double expected = layout.mud_density * release.volume();  // kg
+    const double expected = layout.mud_density * release.vertical_volume();  // kg
     EXPECT_NEAR(particles.total_mass(), expected, 1e-12 * expected) << "spacing " << spacing;
     for (std::size_t i = 0; i < particles.size(); ++i) {
       EXPECT_TRUE(ground.contains(particles.x[i], particles.y[i]));
@@ -155,11 +155,28 @@ TEST(ReleaseParticles, NormalThicknessReleasesDepthOverTheCosineOfTheSlope) {
   const double normal = release_particles(ground, release, layout).total_mass();
   layout.thickness = ReleaseThickness::vertical;
   const double vertical = release_particles(ground, release, layout).total_mass();
-  EXPECT_NEAR(vertical, layout.mud_density * release.volume(), 1e-12 * vertical);
+  EXPECT_NEAR(vertical, layout.mud_density * release.vertical_volume(), 1e-12 * vertical);
   EXPECT_NEAR(normal, vertical / std::cos(phi), 1e-12 * normal);
-  EXPECT_EQ(parse_release_thickness("normal"), ReleaseThickness::normal);
-  EXPECT_EQ(parse_release_thickness("vertical"), ReleaseThickness::vertical);
+  // release_volume gives the same volumes without making particles.
+  EXPECT_NEAR(release_volume(ground, release, ReleaseThickness::vertical), vertical / layout.mud_density, 1e-9);
+  EXPECT_NEAR(release_volume(ground, release, ReleaseThickness::normal), normal / layout.mud_density, 1e-9);
+}
+
+// [mud] release_thickness (docs/inputs.md): auto reads a raster of negative depths, the surface
+// lowering of a DEM of difference, as vertical, and every other release as normal to the ground;
+// normal and vertical are taken as given.
+TEST(ReleaseParticles, TheThicknessChoiceReadsADemOfDifferenceAsVertical) {
+  EXPECT_EQ(parse_release_thickness("auto"), ReleaseThicknessChoice::automatic);
+  EXPECT_EQ(parse_release_thickness("normal"), ReleaseThicknessChoice::normal);
+  EXPECT_EQ(parse_release_thickness("vertical"), ReleaseThicknessChoice::vertical);
   EXPECT_THROW(parse_release_thickness("slope"), InputError);
+  ReleaseSet attributes;
+  ReleaseSet lowering;
+  lowering.depths_from_surface_lowering = true;
+  EXPECT_EQ(thickness_for_release(ReleaseThicknessChoice::automatic, attributes), ReleaseThickness::normal);
+  EXPECT_EQ(thickness_for_release(ReleaseThicknessChoice::automatic, lowering), ReleaseThickness::vertical);
+  EXPECT_EQ(thickness_for_release(ReleaseThicknessChoice::normal, lowering), ReleaseThickness::normal);
+  EXPECT_EQ(thickness_for_release(ReleaseThicknessChoice::vertical, attributes), ReleaseThickness::vertical);
 }
 
 TEST(ReleaseParticles, RefusesLayoutsOutOfRangeAndOtherGrids) {
