@@ -1,11 +1,14 @@
 #!/usr/bin/python3
-"""Talus's mud-flow layers on avaAlr against AvaFrame com1DFA's peak fields.
+"""Talus's mud-flow layers on avaAlr, avaGar or avaHit against AvaFrame com1DFA's peak fields.
 
-Usage: compare.py TALUS_OUT [--png DIR] [--data DIR]
+Usage: compare.py TALUS_OUT [--case avaAlr|avaGar|avaHit] [--png DIR] [--data DIR]
 
-TALUS_OUT is the --out folder of
+TALUS_OUT is the --out folder of (avaAlr, the default case)
   build/talus mudflow --dem data/tirol_alr/avaAlr.tif \
       --release validation/avaalr_com1dfa/release.vrt \
+      --scenario validation/avaalr_com1dfa/scenario.toml --out TALUS_OUT
+or of the same scenario on another path (CASE avaGar or avaHit, D=data/avaframe_gar_hit_com1dfa/CASE)
+  build/talus mudflow --dem $D/dem.tif --release $D/relGar.shp (relHit.shp) --depth-field thickness \
       --scenario validation/avaalr_com1dfa/scenario.toml --out TALUS_OUT
 Prints the comparison table of docs/validation.md ("Mud flow: code-to-code (AvaFrame
 com1DFA)") as Markdown; with --png, writes the difference maps and a map of the two footprints there.
@@ -89,6 +92,19 @@ def footprint_figures(thickness, velocity, release, z, cell):
     }
 
 
+def case_files(case, data):
+    """The DEM, the release polygon and com1DFA's peak thickness and velocity of a case, and the
+    volume com1DFA released (m3: its released mass over its 200 kg/m3)."""
+    if case == "avaAlr":
+        reference = data / "avaframe_alr_com1dfa"
+        return (data / "tirol_alr" / "avaAlr.tif", pathlib.Path(__file__).with_name("release.vrt"),
+                reference / "com1dfa_voellmy_pft.tif", reference / "com1dfa_voellmy_pfv.tif", 52796.0)
+    folder = data / "avaframe_gar_hit_com1dfa" / case
+    mass = json.loads((folder / "com1dfa.json").read_text())["com1dfa"]["initial_mass_kg"]
+    return (folder / "dem.tif", folder / f"rel{case[3:]}.shp", folder / "com1dfa_pft.tif",
+            folder / "com1dfa_pfv.tif", mass / 200.0)
+
+
 def side_channel(shape):
     """The side channel east of the fan's left bank, where the two footprints part most
     (docs/validation.md, point 8): cells at or east of column 115 in rows 400 to 529 of
@@ -167,17 +183,18 @@ def footprint_map(path, talus, reference, z):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("talus_out", type=pathlib.Path)
+    parser.add_argument("--case", choices=["avaAlr", "avaGar", "avaHit"], default="avaAlr")
     parser.add_argument("--png", type=pathlib.Path, help="folder for the difference maps and the footprint map")
     parser.add_argument("--data", type=pathlib.Path,
                         default=pathlib.Path(__file__).resolve().parents[2] / "data",
                         help="the folder of the real data sets (default: the repository's data/)")
     args = parser.parse_args()
 
-    reference_dir = args.data / "avaframe_alr_com1dfa"
-    dem = gdal.Open(str(args.data / "tirol_alr" / "avaAlr.tif"))
+    dem_path, release_path, pft_path, pfv_path, com_released = case_files(args.case, args.data)
+    dem = gdal.Open(str(dem_path))
     z = dem.ReadAsArray().astype(float)
     cell = dem.GetGeoTransform()[1]
-    release_raster = gdal.Rasterize("/vsimem/release.tif", str(pathlib.Path(__file__).with_name("release.vrt")),
+    release_raster = gdal.Rasterize("/vsimem/release.tif", str(release_path),
                              format="GTiff", width=dem.RasterXSize, height=dem.RasterYSize,
                              outputBounds=[dem.GetGeoTransform()[0],
                                            dem.GetGeoTransform()[3] - cell * dem.RasterYSize,
@@ -186,14 +203,14 @@ def main():
                              burnValues=[1], outputType=gdal.GDT_Byte)
     release = release_raster.ReadAsArray() > 0
 
-    com_thickness = read(reference_dir / "com1dfa_voellmy_pft.tif")
-    com_velocity = read(reference_dir / "com1dfa_voellmy_pfv.tif")
+    com_thickness = read(pft_path)
+    com_velocity = read(pfv_path)
     talus_thickness = read(args.talus_out / "flow_depth_max.tif")
     talus_velocity = read(args.talus_out / "velocity_max.tif")
     if talus_thickness.shape != z.shape:
         parser.exit(2, f"compare.py: error: {args.talus_out / 'flow_depth_max.tif'}: {talus_thickness.shape[1]} x "
-                       f"{talus_thickness.shape[0]} cells, not avaAlr's {z.shape[1]} x {z.shape[0]}: not a run on "
-                       f"avaAlr.tif\n")
+                       f"{talus_thickness.shape[0]} cells, not {args.case}'s {z.shape[1]} x {z.shape[0]}: not a run "
+                       f"on {dem_path.name}\n")
     com = footprint_figures(com_thickness, com_velocity, release, z, cell)
     talus = footprint_figures(talus_thickness, talus_velocity, release, z, cell)
     a, b = com["affected"], talus["affected"]
@@ -209,7 +226,7 @@ def main():
     print("| figure | com1DFA | Talus | difference |")
     print("|---|---|---|---|")
     if released is not None:
-        print(f"| released volume (m3) | 52796 | {released:.0f} | {released / 52796 - 1:+.1%} |")
+        print(f"| released volume (m3) | {com_released:.0f} | {released:.0f} | {released / com_released - 1:+.1%} |")
     print(row("affected area, peak thickness > 0.1 m", "area_km2", "km2", 3))
     print(f"| footprint IoU | - | {iou:.3f} | - |")
     print(row("runout along the path", "runout_m", "m", 0))
@@ -220,16 +237,18 @@ def main():
     dv = talus_velocity[both] - com_velocity[both]
     print(f"| peak thickness where both reach: mean / RMS difference (m) | - | {dh.mean():+.2f} / {np.sqrt((dh**2).mean()):.2f} | - |")
     print(f"| peak velocity where both reach: mean / RMS difference (m/s) | - | {dv.mean():+.1f} / {np.sqrt((dv**2).mean()):.1f} | - |")
-    side_only = b & ~a & side_channel(a.shape)
-    print(f"| cells reached by Talus only in the side channel (rows 400-529, columns >= 115) | - | {side_only.sum()} | - |")
-    print(f"| footprint IoU without them | - | {(a & b).sum() / ((b & ~side_only) | a).sum():.3f} | - |")
+    if args.case == "avaAlr":
+        side_only = b & ~a & side_channel(a.shape)
+        print(f"| cells reached by Talus only in the side channel (rows 400-529, columns >= 115) | - | {side_only.sum()} | - |")
+        print(f"| footprint IoU without them | - | {(a & b).sum() / ((b & ~side_only) | a).sum():.3f} | - |")
     if args.png:
         args.png.mkdir(parents=True, exist_ok=True)
-        difference_map(args.png / "avaalr-thickness-difference.png", "Peak flow thickness, Talus - com1DFA",
+        name = args.case.lower()
+        difference_map(args.png / f"{name}-thickness-difference.png", "Peak flow thickness, Talus - com1DFA",
                        talus_thickness, com_thickness, z, "m", 5.0)
-        difference_map(args.png / "avaalr-velocity-difference.png", "Peak velocity, Talus - com1DFA",
+        difference_map(args.png / f"{name}-velocity-difference.png", "Peak velocity, Talus - com1DFA",
                        talus_velocity, com_velocity, z, "m/s", 20.0)
-        footprint_map(args.png / "avaalr-footprints.png", b, a, z)
+        footprint_map(args.png / f"{name}-footprints.png", b, a, z)
 
 
 if __name__ == "__main__":
