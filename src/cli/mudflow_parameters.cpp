@@ -135,8 +135,10 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
             &s.crowded_merge, Range{1, 4, false, false, 0, "off"});
   table.add("time_steps", "courant", "-",
             "C in dt = C min(s / (c + w), sqrt(s / |a|)), w the fastest closing speed of a neighbour", &s.courant, Range{0, 1, true, false});
-  table.add("time_steps", "cells_per_step", "-", "a particle's step crosses at most this many DEM cells",
-            &s.cells_per_step, Range{0, 10, true, false});
+  table.add("time_steps", "cells_per_step", "-",
+            "a particle's step crosses at most this many DEM cells; 0: 1 in adaptive runs with crowded fusion, 0.5 "
+            "otherwise (docs/mudflow.md section 7)",
+            &s.cells_per_step, Range{0, 10, true, false, 0, "automatic"});
   table.add("time_steps", "longest_step", "s", "step of level 0; level k steps are longest_step / 2^k", &s.longest_step, Range{0.001, 10, false, false});
   table.add("time_steps", "deepest_level", "", "deepest step level", &s.deepest_level, Range{0, 30, false, false});
   table.add("time_steps", "guard", "", "detect blown-up steps and retry them with halved steps", &s.guard);

@@ -16,6 +16,10 @@ namespace {
 // The arrival time (s) written for cells the flow covers at release, the first instant.
 constexpr double kReleaseArrival = 0.001;
 
+// The share of the kernel's central weight below which a cell takes no part of a particle's
+// volume in the maps (find_footprint).
+constexpr double kTraceWeight = 1e-6;
+
 // The integer node coordinates k with low <= k <= high (low <= high) inside [0, count - 1];
 // false when there are none.
 bool node_range(double low, double high, int count, int& first, int& last) {
@@ -65,6 +69,9 @@ FlowMaps::FlowMaps(const GroundModel& ground, double mud_density, double arrival
 // (smoothing_kernel.hpp) and normalised to sum 1 over the valid ones. The radius is at least 1.5
 // cells, so the centre of the cell holding (x, y) (at most 0.71 cells away) is always among them:
 // only a particle whose own cell is invalid can find no valid centre, and it leaves nothing.
+// A centre in the kernel's last fringe, where W falls below kTraceWeight of its central value
+// (the outer 2% of the radius for Wendland's kernel), takes no share: it would hold a trace of mud (down to 1e-16 m)
+// that no map can show, a cell "reached" that draws as never reached.
 void FlowMaps::find_footprint(double x, double y, double radius) {
   footprint_.clear();
   const Grid<double>& dem = ground_.elevation_grid();
@@ -75,6 +82,7 @@ void FlowMaps::find_footprint(double x, double y, double radius) {
   if (!node_range(std::min(col_a, col_b), std::max(col_a, col_b), spec.width, col0, col1)) return;
   if (!node_range(std::min(row_a, row_b), std::max(row_a, row_b), spec.height, row0, row1)) return;
   const double radius_squared = radius * radius;
+  const double least_weight = kTraceWeight * kernel_value(0.0, radius);
   double total = 0;  // sum of the kernel weights (1/m2)
   for (int row = row0; row <= row1; ++row) {
     const double dy = spec.node_y(row) - y;
@@ -85,7 +93,7 @@ void FlowMaps::find_footprint(double x, double y, double radius) {
       const double r_squared = dx * dx + dy * dy;
       if (r_squared >= radius_squared) continue;
       const double weight = kernel_value(std::sqrt(r_squared), radius);
-      if (weight <= 0.0) continue;
+      if (weight <= least_weight) continue;
       footprint_.push_back({cell, weight});
       total += weight;
     }

@@ -32,6 +32,11 @@
 
 namespace talus {
 
+double cells_crossed_per_step(const MudflowSettings& settings) {
+  if (settings.cells_per_step > 0) return settings.cells_per_step;
+  return settings.adaptive && settings.crowded_merge > 0 ? 1.0 : 0.5;
+}
+
 const char* to_string(MudflowEnd end) {
   switch (end) {
     case MudflowEnd::duration:
@@ -74,7 +79,7 @@ void validate(const MudflowSettings& s) {
   require(s.split_threshold > 0, "the split threshold must be positive");
   require(s.merge_threshold >= 0 && s.merge_speed >= 0, "the merge threshold and speed must not be negative");
   require(s.courant > 0 && s.courant <= 1, "the Courant number must lie in (0, 1]");
-  require(s.cells_per_step > 0 && s.cells_per_step <= 10, "the cells crossed per step must lie in (0, 10]");
+  require(s.cells_per_step >= 0 && s.cells_per_step <= 10, "the cells crossed per step must lie in (0, 10] or be 0 (automatic)");
   require(std::isfinite(s.longest_step) && s.longest_step > 0, "the longest step must be positive (s)");
   require(s.deepest_level >= 0 && s.deepest_level <= kMostLevels,
           "the deepest level must lie in [0, " + std::to_string(kMostLevels) + "]");
@@ -137,7 +142,7 @@ class MudflowRun {
         column_{settings.mud_density, settings.gravity},
         forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity, settings.pressure},
         criteria_{settings.courant, settings.rheology.internal_viscosity,
-                  std::min(ground.spec().cell_width(), ground.spec().cell_height()), settings.cells_per_step},
+                  std::min(ground.spec().cell_width(), ground.spec().cell_height()), cells_crossed_per_step(settings)},
         largest_cell_(std::max(ground.spec().cell_width(), ground.spec().cell_height())),
         smallest_smoothing_(settings.adaptive && settings.crowded_merge > 0
                                 ? settings.particle_size * kSupportPerSpacing

@@ -50,11 +50,11 @@ struct MudflowSettings {
   double split_threshold = 0.5;     // split when size x |grad P| / P exceeds this (-)
   double merge_threshold = 0.1;     // a calm group merges when every member's size x |grad P| / P is below this (-)
   double merge_speed = 0.5;         // and its members' velocities differ by less than this (m/s)
-  double crowded_merge = 0;         // > 0: crowded groups merge while the merged particle sums over at most this many
+  double crowded_merge = 1.5;       // > 0: crowded groups merge while the merged particle sums over at most this many
                                     // finest support radii (-; docs/mudflow.md section 8); 0: off
   // Time steps (paper 4.2; Courant condition).
   double courant = 0.3;             // C in dt = C min(s / (c + w), sqrt(s / |a|)), w the neighbours' closing speed (-)
-  double cells_per_step = 0.5;      // a step crosses at most this many DEM cells (-)
+  double cells_per_step = 0;        // a step crosses at most this many DEM cells (-); 0: automatic, see below
   double longest_step = 0.5;        // s: level-0 step
   int deepest_level = 12;           // steps are longest_step / 2^level, level <= this
   bool guard = true;                // detect blow-up and retry with halved steps
@@ -74,6 +74,11 @@ struct MudflowSettings {
   double map_interval = 0.5;        // s: flow depth, velocity and pressure maxima are sampled this often
   double snapshot_interval = 0;     // s: > 0 keeps particle snapshots this often
 };
+
+// The ground limit of the time steps (docs/mudflow.md section 7): cells_per_step when given, else
+// 1 cell in adaptive runs with crowded fusion, where the deep mud's particles are coarse and the
+// flow at one cell per step stays with the time-converged run, and half a cell otherwise.
+double cells_crossed_per_step(const MudflowSettings& settings);
 
 enum class MudflowEnd { duration, energy, outflow };
 const char* to_string(MudflowEnd end);
