@@ -147,6 +147,10 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
             &s.unguarded_step, Range{1e-4, 10, false, false, 0, "off"});
   table.add("contact", "curvature", "",
             "the basal normal stress includes the centripetal term rho0 h u^2 kappa of the ground's curvature", &s.curvature);
+  table.add("contact", "node_normals", "",
+            "the ground normal is interpolated bilinearly between normals at the nodes (each the mean slope of the "
+            "node's four squares), as in com1DFA, instead of each square's own",
+            &s.node_normals);
   table.add("contact", "curvature_span", "m",
             "kappa is measured between the ground normals this far apart along the velocity (at least one DEM cell and "
             "the particle's spacing)",
@@ -163,6 +167,10 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
   table.add("rheology", "yield_stress", "Pa", "yield stress tau_y of Bingham", &r.yield_stress, Range{0, 1e7, false, false});
   table.add("rheology", "internal_viscosity", "m2/s", "kinematic viscosity of the internal friction between particles",
             &r.internal_viscosity, Range{0, 1e4, false, false});
+  table.add("rheology", "lateral_mixing", "-",
+            "C of the drag (C / s) |u - u_mean| (u - u_mean) of each column towards the kernel mean velocity around "
+            "it, s its footprint's side (com1DFA's artificial viscosity: 100); 0 none",
+            &r.lateral_mixing, Range{0, 1e4, false, false});
   table.add("deposition", "stop_speed", "m/s", "mud slower than this for stop_duration, and held by the bed, deposits",
             &s.stop_speed, Range{0, 100, false, false});
   table.add("deposition", "stop_duration", "s", "how long the mud must stay slower than stop_speed", &s.stop_duration, Range{0, 86400, false, false});

@@ -51,7 +51,7 @@ double gather_density(const ParticleSet& particles, const PairSearch& search, st
     // At r = 0 (two feet on one spot) the gradient is zero by symmetry. The division is done for
     // every pair, by at least the smallest double, so the loop has no branch.
     const double factor = 0.5 * (own.slope + other.slope) / std::max(r, kSmallestPositive);
-    pairs[k] = {slot.index[s], r > 0.0 ? factor : 0.0};
+    pairs[k] = {slot.index[s], static_cast<float>(term[k]), r > 0.0 ? factor : 0.0};
   }
   double sigma = particles.mass[i] * sample_kernel(0.0, inverse_i).value;
   for (std::size_t k = 0; k < count; ++k) sigma += term[k];

@@ -56,8 +56,16 @@ FlowAcceleration flow_acceleration(const ParticleSet& particles, std::size_t i, 
   double px = 0, py = 0;            // pressure (m/s2, horizontal)
   double fx = 0, fy = 0, fz = 0;    // viscosity (m/s2)
   double closing = 0;               // m/s
+  double weights = 0, mvx = 0, mvy = 0, mvz = 0;  // the neighbours' share of sigma_i and of its momentum
   for (const NeighbourPair& pair : neighbours) {
     const std::size_t j = pair.index;
+    if (constants.mean_velocity) {
+      const double w = pair.weight;
+      weights += w;
+      mvx += w * vx[j];
+      mvy += w * vy[j];
+      mvz += w * vz[j];
+    }
     const double dx = xi - x[j], dy = yi - y[j];
     const double dvx = vxi - vx[j], dvy = vyi - vy[j];
     closing = std::max(closing, approach_speed(dx, dy, dvx, dvy));
@@ -78,7 +86,12 @@ FlowAcceleration flow_acceleration(const ParticleSet& particles, std::size_t i, 
     }
   }
   const Eigen::Vector3d total(px + fx, py + fy, fz - constants.gravity);
-  return {tangent_part(total, normals.at(i)), closing};
+  FlowAcceleration result{tangent_part(total, normals.at(i)), closing};
+  if (constants.mean_velocity && sigma_i > 0.0) {
+    const double own = std::max(sigma_i - weights, 0.0);  // m_i W(0, R_s,i), the rest of sigma_i
+    result.mean_velocity = (Eigen::Vector3d(mvx, mvy, mvz) + own * Eigen::Vector3d(vxi, vyi, vzi)) / (own + weights);
+  }
+  return result;
 }
 
 }  // namespace talus

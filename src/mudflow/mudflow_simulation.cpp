@@ -140,7 +140,8 @@ class MudflowRun {
         finest_level_(settings.deepest_level + settings.max_retries),
         level_steps_(level_steps(coarse_step_, finest_level_)),
         column_{settings.mud_density, settings.gravity},
-        forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity, settings.pressure},
+        forces_{settings.mud_density, settings.gravity, settings.rheology.internal_viscosity, settings.pressure,
+                settings.rheology.lateral_mixing > 0.0},
         criteria_{settings.courant, settings.rheology.internal_viscosity,
                   std::min(ground.spec().cell_width(), ground.spec().cell_height()), cells_crossed_per_step(settings)},
         largest_cell_(std::max(ground.spec().cell_width(), ground.spec().cell_height())),
@@ -240,6 +241,7 @@ class MudflowRun {
   std::vector<std::vector<std::uint32_t>> waiting_;
   std::vector<double> smoothing_;         // m: support radius R_s of the sums (flow_density.hpp)
   std::vector<BasalResistance> resistance_;
+  std::vector<Eigen::Vector3d> departure_;  // m/s: u - u_mean in the tangent plane, at the latest evaluation
   std::vector<std::uint8_t> wanted_;      // level the criteria ask for (with the guard's depth)
   std::vector<std::uint64_t> next_sync_;  // tick at which the particle's step ends
   std::vector<char> outside_;             // left the valid area during this coarse step (2: the window's halo)
@@ -273,6 +275,7 @@ void MudflowRun::resize_work() {
   neighbours_.resize(n);
   smoothing_.resize(n);
   resistance_.resize(n);
+  departure_.resize(n, Eigen::Vector3d::Zero());
   wanted_.resize(n, 0);
   next_sync_.resize(n, 0);
   outside_.assign(n, 0);
@@ -298,7 +301,7 @@ void MudflowRun::place_all_on_ground() {
   std::vector<std::uint32_t> all(p_.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<std::uint32_t>(i);
   for_each_listed(all, [&](std::size_t i) {
-    place_on_ground(ground_, p_, i, normals_);
+    place_on_ground(ground_, p_, i, normals_, s_.node_normals);
     smoothing_[i] = smoothing_radius(p_, i, smallest_smoothing_);
   });
 }
@@ -352,6 +355,7 @@ void MudflowRun::update_forces(std::size_t i) {
   p_.ax[i] = a.x();
   p_.ay[i] = a.y();
   p_.az[i] = a.z();
+  if (forces_.mean_velocity) departure_[i] = tangent_part(p_.velocity(i) - forces.mean_velocity, normals_.at(i));
   const Eigen::Vector3d v = p_.velocity(i);
   const double speed = v.norm();
   const double cos_slope = normals_.z[i];
@@ -360,7 +364,7 @@ void MudflowRun::update_forces(std::size_t i) {
   if (s_.curvature && speed > 0.0) {
     const double spacing = p_.radius[i] / kSupportPerSpacing;
     const double half_span = 0.5 * std::max({s_.curvature_span, largest_cell_, spacing});
-    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, half_span);
+    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, half_span, s_.node_normals);
     normal_acceleration = std::max(0.0, normal_acceleration + kappa * speed * speed);
   }
   BasalContact contact;
@@ -424,6 +428,16 @@ void MudflowRun::open_steps(const std::vector<std::uint32_t>& list, std::uint64_
 // never reverse it.
 void MudflowRun::kick(std::size_t i, double duration) {
   Eigen::Vector3d v = p_.velocity(i) + duration * Eigen::Vector3d(p_.ax[i], p_.ay[i], p_.az[i]);
+  if (forces_.mean_velocity) {
+    // Lateral mixing (docs/mudflow.md section 4): du/dt = -(C / s) |du| du, implicit over the
+    // step of which this kick is half. The departure du is the one measured with the forces,
+    // when all velocities were at one time, so that the mean's lag cannot brake a column that
+    // accelerates with its neighbours.
+    const Eigen::Vector3d& departure = departure_[i];
+    const double side = smoothing_[i] / kSupportPerSpacing;  // sqrt(m / sigma) within the radius's bounds (m)
+    const double c = s_.rheology.lateral_mixing * departure.norm() * 2.0 * duration / side;
+    v -= 0.5 * c / (1.0 + c) * departure;
+  }
   const double speed = v.norm();
   if (speed > 0.0) v *= resisted_speed(resistance_[i], speed, duration) / speed;
   p_.vx[i] = v.x();
@@ -484,7 +498,7 @@ void MudflowRun::entrain(const std::vector<std::uint32_t>& list) {
 // outflow and drops out of every sum (mass 0) until the coarse step ends.
 void MudflowRun::drift(const std::vector<std::uint32_t>& list, double duration) {
   for_each_listed(list, [&](std::size_t i) {
-    const bool on_ground = drift_on_ground(ground_, p_, i, duration, normals_);
+    const bool on_ground = drift_on_ground(ground_, p_, i, duration, normals_, s_.node_normals);
     const bool in_window = !s_.window_edge || s_.window_edge->contains(p_.x[i], p_.y[i]);
     if (on_ground && in_window) return;
     outside_[i] = on_ground ? 2 : 1;

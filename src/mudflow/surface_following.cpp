@@ -22,11 +22,42 @@ Eigen::Vector2d slope_from_neighbours(const Grid<double>& z, int col, int row) {
   return {difference(1, 0, spec.geotransform[1]), difference(0, 1, spec.geotransform[5])};
 }
 
+// The slope at node (col, row) as the mean of the gradients at the centres of its four squares
+// (a 3 x 3 stencil: the central differences along one axis, weighted 1 2 1 across it); false
+// where a node of the block is invalid.
+bool slope_of_four_squares(const Grid<double>& z, int col, int row, Eigen::Vector2d& slope) {
+  for (int dr = -1; dr <= 1; ++dr) {
+    for (int dc = -1; dc <= 1; ++dc) {
+      if (!z.is_valid(col + dc, row + dr)) return false;
+    }
+  }
+  auto at = [&](int dc, int dr) { return z.at(col + dc, row + dr); };
+  const double dx = z.spec().geotransform[1], dy = z.spec().geotransform[5];
+  slope.x() = (2.0 * (at(1, 0) - at(-1, 0)) + (at(1, 1) - at(-1, 1)) + (at(1, -1) - at(-1, -1))) / (8.0 * dx);
+  slope.y() = (2.0 * (at(0, 1) - at(0, -1)) + (at(1, 1) - at(1, -1)) + (at(-1, 1) - at(-1, -1))) / (8.0 * dy);
+  return true;
+}
+
 }  // namespace
 
 
 // The normal of z = f(x, y) is (-f_x, -f_y, 1) / |(-f_x, -f_y, 1)| (paper 2.2, fig. 3a).
-Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square) {
+Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square, bool node_normals) {
+  if (node_normals) {
+    const Grid<double>& z = ground.elevation_grid();
+    const std::size_t width = static_cast<std::size_t>(z.spec().width);
+    const std::size_t nodes[4] = {square.i00, square.i10, square.i01, square.i11};
+    const double weights[4] = {(1.0 - square.fx) * (1.0 - square.fy), square.fx * (1.0 - square.fy),
+                               (1.0 - square.fx) * square.fy, square.fx * square.fy};
+    Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+    bool complete = true;
+    for (int k = 0; k < 4 && complete; ++k) {
+      Eigen::Vector2d slope;
+      complete = slope_of_four_squares(z, static_cast<int>(nodes[k] % width), static_cast<int>(nodes[k] / width), slope);
+      gradient += weights[k] * slope;
+    }
+    if (complete) return Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized();
+  }
   const Eigen::Vector2d gradient = ground.slope(square);
   return Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized();
 }
@@ -38,10 +69,11 @@ Eigen::Vector3d turned_into_plane(const Eigen::Vector3d& v, const Eigen::Vector3
   return tangent * (v.norm() / length);
 }
 
-void place_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, FootNormals& normals) {
+void place_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, FootNormals& normals,
+                     bool node_normals) {
   const NodeSquare square = ground.locate(particles.x[i], particles.y[i]);
   particles.z[i] = ground.elevation(square);
-  const Eigen::Vector3d n = ground_normal(ground, square);
+  const Eigen::Vector3d n = ground_normal(ground, square, node_normals);
   normals.x[i] = n.x();
   normals.y[i] = n.y();
   normals.z[i] = n.z();
@@ -54,18 +86,18 @@ void place_on_ground(const GroundModel& ground, ParticleSet& particles, std::siz
 // The foot moves with the horizontal part of the velocity; the vertical part is the ground's
 // (the velocity is tangent, so this is the motion along the surface to first order).
 bool drift_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, double duration,
-                     FootNormals& normals) {
+                     FootNormals& normals, bool node_normals) {
   const double x = particles.x[i] + particles.vx[i] * duration;
   const double y = particles.y[i] + particles.vy[i] * duration;
   if (!ground.contains(x, y)) return false;
   particles.x[i] = x;
   particles.y[i] = y;
-  place_on_ground(ground, particles, i, normals);
+  place_on_ground(ground, particles, i, normals, node_normals);
   return true;
 }
 
 double curvature_along(const GroundModel& ground, double x, double y, const Eigen::Vector3d& direction,
-                       double half_span) {
+                       double half_span, bool node_normals) {
   const double horizontal = std::sqrt(direction.x() * direction.x() + direction.y() * direction.y());
   if (!(horizontal > 0.0)) return 0.0;
   const double ex = direction.x() / horizontal * half_span, ey = direction.y() / horizontal * half_span;
@@ -83,7 +115,8 @@ double curvature_along(const GroundModel& ground, double x, double y, const Eige
   const Eigen::Vector3d b(behind_x, behind_y, ground.elevation(behind));
   const double path = (a - b).norm();
   if (!(path > 0.0)) return 0.0;
-  return -(ground_normal(ground, ahead) - ground_normal(ground, behind)).dot(direction) / path;
+  return -(ground_normal(ground, ahead, node_normals) - ground_normal(ground, behind, node_normals)).dot(direction) /
+         path;
 }
 
 // The slope's central differences at the node: the mean of the four bilinear squares' gradients

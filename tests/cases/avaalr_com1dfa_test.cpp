@@ -280,5 +280,35 @@ TEST(Com1dfaPaths, TheAvaAlrScenarioHoldsOnAvaGarAndAvaHit) {
   }
 }
 
+// One scenario of com1DFA's physics for all three paths, nothing chosen per case
+// (validation/avaalr_com1dfa/com1dfa_physics.toml: its Voellmy friction, release thickness,
+// vertical-column pressure, artificial viscosity as `[rheology] lateral_mixing = 100`, its node
+// normals and its curvature over one step; issue 37, item 2; docs/validation.md, point 13; about
+// 25 s on 2 cores). Measured at seed 1 with the default fusion:
+// - avaGar: IoU 0.839, area +3.7%, runout -0.6%, peak velocity -6.6%: issue 37's targets met;
+// - avaHit: IoU 0.912, area -4.2%, runout -1.4%, peak velocity -1.6%: met;
+// - avaAlr: IoU 0.786, area +22.2%, runout +0.2%, peak velocity -2.0%: not met (the flow
+//   spreads over a ridge a cell or two wide and into the side channel); asserted at IoU 0.76 and
+//   area within 25%.
+TEST(Com1dfaPaths, Com1dfasPhysicsOnAllThreePaths) {
+  GDALAllRegister();
+  struct Expected {
+    Path path;
+    double least_iou, area_tolerance;
+  };
+  for (const Expected& e : {Expected{other_path("avaGar"), 0.80, 0.10}, Expected{other_path("avaHit"), 0.88, 0.10},
+                            Expected{ava_alr(), 0.76, 0.25}}) {
+    SCOPED_TRACE(e.path.dem.string());
+    const fs::path root = test::fresh_folder("com1dfa_physics_" + e.path.dem.parent_path().filename().string());
+    run_case(e.path, root, case_dir() / "com1dfa_physics.toml");
+    const Comparison c = compare(e.path, root);
+    EXPECT_GE(c.iou, e.least_iou);
+    EXPECT_NEAR(c.talus.area_km2 / c.com.area_km2, 1.0, e.area_tolerance);
+    EXPECT_NEAR(c.talus.runout / c.com.runout, 1.0, 0.05);
+    EXPECT_NEAR(c.talus.travel_angle, c.com.travel_angle, 1.0);
+    EXPECT_NEAR(c.talus.peak_velocity / c.com.peak_velocity, 1.0, 0.10);
+  }
+}
+
 }  // namespace
 }  // namespace talus

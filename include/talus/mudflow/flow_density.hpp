@@ -35,6 +35,7 @@ inline constexpr double kLargestSmoothingGrowth = 4.0;
 // need not evaluate the kernel again: grad_i W_ij = gradient_factor x (x_i - x_j, y_i - y_j).
 struct NeighbourPair {
   std::uint32_t index = 0;
+  float weight = 0;            // m_j (W(r, R_s,i) + W(r, R_s,j)) / 2 (kg/m2): the pair's term of sigma_i
   double gradient_factor = 0;  // (dW/dr(r, R_s,i) + dW/dr(r, R_s,j)) / (2 r) (1/m4), <= 0
 };
 using NeighbourList = std::vector<NeighbourPair>;

@@ -62,6 +62,7 @@ struct MudflowSettings {
   double unguarded_step = 0;        // s: > 0 forces this global step and ignores the Courant condition (tests)
   // Ground contact.
   bool curvature = true;            // the basal normal stress includes the centripetal term rho0 h u^2 kappa
+  bool node_normals = false;        // normals interpolated between the nodes' (smooth), not the squares' own
   double curvature_span = 20;       // m: kappa is measured between the ground normals this far apart along
                                     // the velocity (at least one cell and the particle's spacing)
   // Rheology, deposition and entrainment.

@@ -26,6 +26,10 @@ struct RheologyParameters {
   double viscosity = 100;          // dynamic viscosity eta (Pa s): viscous and Bingham
   double yield_stress = 500;       // tau_y of Bingham (Pa)
   double internal_viscosity = 0.5; // kinematic viscosity of the SPH internal friction (m2/s)
+  // C of the lateral mixing (-): each column's velocity relaxes towards the kernel mean around it
+  // by a drag (C / s) |u - u_mean| (u - u_mean), s = sqrt(m / sigma) its footprint's side (AvaFrame
+  // com1DFA's artificial viscosity, subgridMixingFactor = 100); 0: none.
+  double lateral_mixing = 0;
 };
 
 // The basal shear stress of one column divided by its mass per area (rho0 h), written as a

@@ -103,6 +103,29 @@ TEST(FlowForces, ViscosityDrawsVelocitiesTogether) {
   }
 }
 
+// The lateral mixing's mean velocity (docs/mudflow.md section 4): the density's weights, the
+// particle's own included, so a column among neighbours of one velocity has that velocity as its
+// mean, and a faster column's mean lies between its own velocity and its neighbours'.
+TEST(FlowForces, TheMeanVelocityWeighsTheNeighboursAsTheDensityDoes) {
+  ParticleSet p;
+  for (int k = 0; k < 5; ++k) p.add(500.0, {0.3 * k, 0.0, 0.0}, {2.0, 1.0, 0.0}, 1.0);
+  p.vx[2] = 6.0;  // the middle column runs faster
+  Evaluated e = evaluate(p);
+  FlowForceConstants mixing{kRho, kG, 0.0};
+  mixing.mean_velocity = true;
+  const Eigen::Vector3d middle = flow_acceleration(p, 2, e.lists[2], e.normals, mixing).mean_velocity;
+  EXPECT_GT(middle.x(), 2.0);
+  EXPECT_LT(middle.x(), 6.0);
+  EXPECT_NEAR(middle.y(), 1.0, 1e-6);
+  // Among neighbours of one velocity the mean is that velocity (the weights are normalised).
+  p.vx[2] = 2.0;
+  const Eigen::Vector3d even = flow_acceleration(p, 2, e.lists[2], e.normals, mixing).mean_velocity;
+  EXPECT_NEAR((even - Eigen::Vector3d(2.0, 1.0, 0.0)).norm(), 0.0, 1e-6);
+  // Without the option no mean is measured.
+  const FlowForceConstants plain{kRho, kG, 0.0};
+  EXPECT_EQ(flow_acceleration(p, 2, e.lists[2], e.normals, plain).mean_velocity, Eigen::Vector3d::Zero());
+}
+
 TEST(FlowForces, GravityAloneIsItsTangentialPartOnASlope) {
   // One column on a plane of slope 30 degrees: g sin(30) down the slope, nothing normal.
   const double theta = std::acos(-1.0) / 6.0;
