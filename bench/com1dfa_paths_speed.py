@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Wall time per simulated second of the mud flow on AvaFrame's three paths, against com1DFA (issue 37, item 3).
 
-Runs `talus mudflow` on avaAlr, avaGar and avaHit with the avaAlr case's scenario
-(validation/avaalr_com1dfa/scenario.toml) for each adaptivity setting and thread count, in
+Runs `talus mudflow` on avaAlr, avaGar and avaHit with one scenario (by default the avaAlr case's,
+validation/avaalr_com1dfa/scenario.toml; --scenario com1dfa_physics.toml for com1DFA's physics)
+for each adaptivity setting and thread count, in
 rounds that alternate the runs (the machine's noise falls on all of them alike), and prints one
 Markdown row per path x setting x thread count with the median over the rounds:
 
@@ -21,7 +22,7 @@ Settings: `default` (crowded fusion, one cell per step: docs/mudflow.md section 
 
 Usage (from the repository root; a round of everything takes about 5 minutes on 2 cores):
   /usr/bin/python3 bench/com1dfa_paths_speed.py [--talus build/talus] [--paths avaAlr,avaGar,avaHit]
-      [--settings default,paper] [--threads 1,2] [--rounds 3] [--work DIR]
+      [--settings default,paper] [--threads 1,2] [--rounds 3] [--work DIR] [--scenario FILE]
 """
 import argparse
 import json
@@ -49,18 +50,18 @@ def release_arguments(path):
             "thickness"]
 
 
-def scenario_for(setting, work):
-    """The case's scenario, with the paper's fusion alone for `paper`."""
+def scenario_for(scenario, setting, work):
+    """The scenario, with the paper's fusion alone for `paper`."""
     if setting != "paper":
-        return CASE / "scenario.toml"
+        return scenario
     path = work / "paper_fusion.toml"
-    path.write_text((CASE / "scenario.toml").read_text() + "\n[adaptivity]\ncrowded_merge = 0\n")
+    path.write_text(scenario.read_text() + "\n[adaptivity]\ncrowded_merge = 0\n")
     return path
 
 
-def run(talus, path, setting, threads, work):
+def run(talus, scenario, path, setting, threads, work):
     out = work / f"{path}-{setting}-t{threads}"
-    command = [str(talus), "mudflow", *release_arguments(path), "--scenario", str(scenario_for(setting, work)),
+    command = [str(talus), "mudflow", *release_arguments(path), "--scenario", str(scenario_for(scenario, setting, work)),
                "--threads", str(threads), "--project", "off", "--out", str(out)]
     if setting == "uniform":
         command += ["--adaptive", "off"]
@@ -98,6 +99,7 @@ def main():
     parser.add_argument("--threads", default="1,2")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--work", type=pathlib.Path, default=ROOT / "build" / "com1dfa-paths-speed")
+    parser.add_argument("--scenario", type=pathlib.Path, default=CASE / "scenario.toml")
     args = parser.parse_args()
     args.work.mkdir(parents=True, exist_ok=True)
     jobs = [(p, s, int(t)) for p in args.paths.split(",") for s in args.settings.split(",")
@@ -106,7 +108,7 @@ def main():
     outs = {}
     for round_index in range(args.rounds):
         for job in (jobs if round_index % 2 == 0 else reversed(jobs)):
-            outs[job], values = run(args.talus, *job, args.work)
+            outs[job], values = run(args.talus, args.scenario.resolve(), *job, args.work)
             measured[job].append(values)
             print(f"round {round_index + 1}: {job[0]} {job[1]} {job[2]} thread(s): "
                   f"{values['wall_per_sim_s']:.3f} s per simulated second", file=sys.stderr)
