@@ -74,7 +74,7 @@ def main():
         labels.append(f"finest particles {size:.3g} m")
     handles += [plt.Line2D([], [], color="grey", marker="o", linestyle=""),
                 plt.Line2D([], [], color="grey", marker="^", linestyle="")]
-    labels += ["uniform particles", "adaptive (fission, fusion, individual steps)"]
+    labels += ["uniform particles", "adaptive, the default (fission, fusion and crowded fusion, individual steps)"]
     figure.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
     title = "Mud flow on the sample scene: speed against accuracy (reference: uniform finest particles)"
     if left_out:
