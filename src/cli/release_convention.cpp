@@ -5,6 +5,10 @@
 namespace talus::cli {
 namespace {
 
+ReleaseThickness other_than(ReleaseThickness thickness) {
+  return thickness == ReleaseThickness::normal ? ReleaseThickness::vertical : ReleaseThickness::normal;
+}
+
 const char* describe(ReleaseThickness thickness) {
   return thickness == ReleaseThickness::normal ? "thickness normal to the ground" : "vertical depths";
 }
@@ -26,19 +30,16 @@ ReleaseConvention release_convention(const GroundModel& ground, const ReleaseSet
   ReleaseConvention c;
   c.choice = choice;
   c.thickness = thickness_for_release(choice, release);
-  const ReleaseThickness other =
-      c.thickness == ReleaseThickness::normal ? ReleaseThickness::vertical : ReleaseThickness::normal;
   c.volume = release_volume(ground, release, c.thickness);
-  c.other_volume = release_volume(ground, release, other);
+  c.other_volume = release_volume(ground, release, other_than(c.thickness));
   return c;
 }
 
 std::string release_convention_text(const ReleaseConvention& c) {
-  const ReleaseThickness other =
-      c.thickness == ReleaseThickness::normal ? ReleaseThickness::vertical : ReleaseThickness::normal;
   char text[512];
   std::snprintf(text, sizeof text, "depths read as %s (%s): %.0f m3; as %s they would give %.0f m3",
-                describe(c.thickness), reason(c).c_str(), c.volume, describe(other), c.other_volume);
+                describe(c.thickness), reason(c).c_str(), c.volume, describe(other_than(c.thickness)),
+                c.other_volume);
   return text;
 }
 

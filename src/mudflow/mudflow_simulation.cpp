@@ -156,6 +156,7 @@ class MudflowRun {
     layout.seed = settings.seed;
     layout.thickness = settings.release_thickness;
     p_ = release_particles(ground, release, layout);
+    if (settings.node_normals) node_slopes_.emplace(ground);
     if (erodible != nullptr) {
       require_same_grid(ground.spec(), erodible->spec(), "mudflow: DEM and erodible depth");
       entrainment_.emplace(ground, *erodible, settings.entrainment_rate, settings.mud_density);
@@ -254,6 +255,8 @@ class MudflowRun {
   std::vector<double> mass_before_;       // kg: masses before an entrainment call, reused
 
   std::optional<Entrainment> entrainment_;
+  std::optional<NodeSlopes> node_slopes_;  // with [contact] node_normals
+  const NodeSlopes* node_slopes() const { return node_slopes_ ? &*node_slopes_ : nullptr; }
   Grid<float> eroded_;
   FlowMaps maps_;
   ParallelLoopChoice loops_;
@@ -301,7 +304,7 @@ void MudflowRun::place_all_on_ground() {
   std::vector<std::uint32_t> all(p_.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<std::uint32_t>(i);
   for_each_listed(all, [&](std::size_t i) {
-    place_on_ground(ground_, p_, i, normals_, s_.node_normals);
+    place_on_ground(ground_, p_, i, normals_, node_slopes());
     smoothing_[i] = smoothing_radius(p_, i, smallest_smoothing_);
   });
 }
@@ -364,7 +367,7 @@ void MudflowRun::update_forces(std::size_t i) {
   if (s_.curvature && speed > 0.0) {
     const double spacing = p_.radius[i] / kSupportPerSpacing;
     const double half_span = 0.5 * std::max({s_.curvature_span, largest_cell_, spacing});
-    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, half_span, s_.node_normals);
+    const double kappa = curvature_along(ground_, p_.x[i], p_.y[i], v / speed, half_span, node_slopes());
     normal_acceleration = std::max(0.0, normal_acceleration + kappa * speed * speed);
   }
   BasalContact contact;
@@ -498,7 +501,7 @@ void MudflowRun::entrain(const std::vector<std::uint32_t>& list) {
 // outflow and drops out of every sum (mass 0) until the coarse step ends.
 void MudflowRun::drift(const std::vector<std::uint32_t>& list, double duration) {
   for_each_listed(list, [&](std::size_t i) {
-    const bool on_ground = drift_on_ground(ground_, p_, i, duration, normals_, s_.node_normals);
+    const bool on_ground = drift_on_ground(ground_, p_, i, duration, normals_, node_slopes());
     const bool in_window = !s_.window_edge || s_.window_edge->contains(p_.x[i], p_.y[i]);
     if (on_ground && in_window) return;
     outside_[i] = on_ground ? 2 : 1;

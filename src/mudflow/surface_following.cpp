@@ -41,24 +41,35 @@ bool slope_of_four_squares(const Grid<double>& z, int col, int row, Eigen::Vecto
 }  // namespace
 
 
-// The normal of z = f(x, y) is (-f_x, -f_y, 1) / |(-f_x, -f_y, 1)| (paper 2.2, fig. 3a).
-Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square, bool node_normals) {
-  if (node_normals) {
-    const Grid<double>& z = ground.elevation_grid();
-    const std::size_t width = static_cast<std::size_t>(z.spec().width);
-    const std::size_t nodes[4] = {square.i00, square.i10, square.i01, square.i11};
-    const double weights[4] = {(1.0 - square.fx) * (1.0 - square.fy), square.fx * (1.0 - square.fy),
-                               (1.0 - square.fx) * square.fy, square.fx * square.fy};
-    Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
-    bool complete = true;
-    for (int k = 0; k < 4 && complete; ++k) {
-      Eigen::Vector2d slope;
-      complete = slope_of_four_squares(z, static_cast<int>(nodes[k] % width), static_cast<int>(nodes[k] / width), slope);
-      gradient += weights[k] * slope;
+NodeSlopes::NodeSlopes(const GroundModel& ground) {
+  const Grid<double>& z = ground.elevation_grid();
+  const GridSpec& spec = z.spec();
+  slope_.assign(spec.cell_count(), Eigen::Vector2d::Zero());
+  has_slope_.assign(spec.cell_count(), 0);
+  for (int row = 0; row < spec.height; ++row) {
+    for (int col = 0; col < spec.width; ++col) {
+      const std::size_t node = z.index(col, row);
+      has_slope_[node] = slope_of_four_squares(z, col, row, slope_[node]);
     }
-    if (complete) return Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized();
   }
-  const Eigen::Vector2d gradient = ground.slope(square);
+}
+
+bool NodeSlopes::interpolated(const NodeSquare& square, Eigen::Vector2d& slope) const {
+  const std::size_t nodes[4] = {square.i00, square.i10, square.i01, square.i11};
+  const double weights[4] = {(1.0 - square.fx) * (1.0 - square.fy), square.fx * (1.0 - square.fy),
+                             (1.0 - square.fx) * square.fy, square.fx * square.fy};
+  slope = Eigen::Vector2d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    if (!has_slope_[nodes[k]]) return false;
+    slope += weights[k] * slope_[nodes[k]];
+  }
+  return true;
+}
+
+// The normal of z = f(x, y) is (-f_x, -f_y, 1) / |(-f_x, -f_y, 1)| (paper 2.2, fig. 3a).
+Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square, const NodeSlopes* node_slopes) {
+  Eigen::Vector2d gradient;
+  if (!node_slopes || !node_slopes->interpolated(square, gradient)) gradient = ground.slope(square);
   return Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized();
 }
 
@@ -70,10 +81,10 @@ Eigen::Vector3d turned_into_plane(const Eigen::Vector3d& v, const Eigen::Vector3
 }
 
 void place_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, FootNormals& normals,
-                     bool node_normals) {
+                     const NodeSlopes* node_slopes) {
   const NodeSquare square = ground.locate(particles.x[i], particles.y[i]);
   particles.z[i] = ground.elevation(square);
-  const Eigen::Vector3d n = ground_normal(ground, square, node_normals);
+  const Eigen::Vector3d n = ground_normal(ground, square, node_slopes);
   normals.x[i] = n.x();
   normals.y[i] = n.y();
   normals.z[i] = n.z();
@@ -86,18 +97,18 @@ void place_on_ground(const GroundModel& ground, ParticleSet& particles, std::siz
 // The foot moves with the horizontal part of the velocity; the vertical part is the ground's
 // (the velocity is tangent, so this is the motion along the surface to first order).
 bool drift_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, double duration,
-                     FootNormals& normals, bool node_normals) {
+                     FootNormals& normals, const NodeSlopes* node_slopes) {
   const double x = particles.x[i] + particles.vx[i] * duration;
   const double y = particles.y[i] + particles.vy[i] * duration;
   if (!ground.contains(x, y)) return false;
   particles.x[i] = x;
   particles.y[i] = y;
-  place_on_ground(ground, particles, i, normals, node_normals);
+  place_on_ground(ground, particles, i, normals, node_slopes);
   return true;
 }
 
 double curvature_along(const GroundModel& ground, double x, double y, const Eigen::Vector3d& direction,
-                       double half_span, bool node_normals) {
+                       double half_span, const NodeSlopes* node_slopes) {
   const double horizontal = std::sqrt(direction.x() * direction.x() + direction.y() * direction.y());
   if (!(horizontal > 0.0)) return 0.0;
   const double ex = direction.x() / horizontal * half_span, ey = direction.y() / horizontal * half_span;
@@ -115,7 +126,7 @@ double curvature_along(const GroundModel& ground, double x, double y, const Eige
   const Eigen::Vector3d b(behind_x, behind_y, ground.elevation(behind));
   const double path = (a - b).norm();
   if (!(path > 0.0)) return 0.0;
-  return -(ground_normal(ground, ahead, node_normals) - ground_normal(ground, behind, node_normals)).dot(direction) /
+  return -(ground_normal(ground, ahead, node_slopes) - ground_normal(ground, behind, node_slopes)).dot(direction) /
          path;
 }
 

@@ -27,13 +27,27 @@ struct FootNormals {
   Eigen::Vector3d at(std::size_t i) const { return {x[i], y[i], z[i]}; }
 };
 
-// Unit upward normal of the ground at a point of a node square. By default the bilinear
-// surface's own, which turns at every node line. With `node_normals` (AvaFrame com1DFA's
-// normals, DFAnumerics "Cell normals") the slopes at the square's four nodes, each the mean of
-// the gradients at the centres of the node's four squares, interpolated bilinearly: the normal
-// then turns smoothly over about two cells, and keeps the square's own where a node of the 3 x 3
-// block around one of its nodes is invalid.
-Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square, bool node_normals = false);
+// The slope at every node of the ground for `[contact] node_normals` (AvaFrame com1DFA's
+// normals, DFAnumerics "Cell normals"; docs/mudflow.md section 6): the mean of the gradients at
+// the centres of the node's four squares, computed once for a run.
+class NodeSlopes {
+ public:
+  explicit NodeSlopes(const GroundModel& ground);
+  // The nodes' slopes interpolated bilinearly at a point of `square` (dz/dx, dz/dy); false where
+  // one of its nodes has none (a node of that node's 3 x 3 block is invalid).
+  bool interpolated(const NodeSquare& square, Eigen::Vector2d& slope) const;
+
+ private:
+  std::vector<Eigen::Vector2d> slope_;  // per node, row-major as the ground's grid
+  std::vector<char> has_slope_;
+};
+
+// Unit upward normal of the ground at a point of a node square. Without `node_slopes` the
+// bilinear surface's own, which turns at every node line; with them the normal of the nodes'
+// slopes interpolated there, which turns smoothly over about two cells, and the square's own
+// where they have none.
+Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square,
+                              const NodeSlopes* node_slopes = nullptr);
 
 // The part of v in the plane of unit normal n.
 inline Eigen::Vector3d tangent_part(const Eigen::Vector3d& v, const Eigen::Vector3d& n) { return v - v.dot(n) * n; }
@@ -45,13 +59,13 @@ Eigen::Vector3d turned_into_plane(const Eigen::Vector3d& v, const Eigen::Vector3
 // Puts particle i's foot on the ground under (x, y): z from the surface, the normal stored in
 // `normals`, the velocity turned into the tangent plane. (x, y) must lie in the valid area.
 void place_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, FootNormals& normals,
-                     bool node_normals = false);
+                     const NodeSlopes* node_slopes = nullptr);
 
 // Moves particle i for `duration` (s) with its horizontal velocity, then places it on the ground
 // there. Returns false, and leaves the particle where it was, when the new place is outside the
 // ground model's valid area (or not a number).
 bool drift_on_ground(const GroundModel& ground, ParticleSet& particles, std::size_t i, double duration,
-                     FootNormals& normals, bool node_normals = false);
+                     FootNormals& normals, const NodeSlopes* node_slopes = nullptr);
 
 // Curvature kappa (1/m) of the ground along the unit tangent `direction` at (x, y), positive in
 // hollows: minus the change of the unit normal along the direction per metre of path, from the
@@ -59,7 +73,7 @@ bool drift_on_ground(const GroundModel& ground, ParticleSet& particles, std::siz
 // valid area). Bilinear surfaces bend at node lines, so half_span of about half a cell averages
 // a bend over one cell.
 double curvature_along(const GroundModel& ground, double x, double y, const Eigen::Vector3d& direction,
-                       double half_span, bool node_normals = false);
+                       double half_span, const NodeSlopes* node_slopes = nullptr);
 
 // cos(theta) of the ground at the centre of valid DEM cell (col, row), from the slope's central
 // differences there (one-sided where only one neighbour along an axis is valid, 0 where none is).

@@ -66,21 +66,23 @@ TEST(SurfaceFollowing, TurnedIntoPlaneKeepsLengthAndLiesInThePlane) {
 // and they agree with the surface's slope at the node (its central differences there).
 TEST(SurfaceFollowing, NodeNormalsAreContinuousAcrossNodeLines) {
   const GroundModel flat = plane();
+  const NodeSlopes flat_slopes(flat);
   const NodeSquare inside = flat.locate(30.4, -40.7);
-  EXPECT_NEAR((ground_normal(flat, inside, true) - ground_normal(flat, inside, false)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((ground_normal(flat, inside, &flat_slopes) - ground_normal(flat, inside)).norm(), 0.0, 1e-12);
   // z = x^2 / 20 on 1 m cells: the squares' slopes along x differ by 0.1 from one to the next
   // (1.95 and 2.05 on either side of x = 20 m, normals 0.02 apart).
   const GroundModel bowl = make_ground(local_spec(40, 40, 1.0), [](double x, double) { return x * x / 20.0; },
                                        fast_material(0, 0, 0.5));
+  const NodeSlopes slopes(bowl);
   const double line = 20.0;  // a node line x = 20 m
   const NodeSquare before = bowl.locate(line - 1e-9, -20.5), after = bowl.locate(line + 1e-9, -20.5);
   EXPECT_GT((ground_normal(bowl, before) - ground_normal(bowl, after)).norm(), 0.015);
-  EXPECT_LT((ground_normal(bowl, before, true) - ground_normal(bowl, after, true)).norm(), 1e-8);
-  const Eigen::Vector3d at_node = ground_normal(bowl, bowl.locate(line, -20.0), true);
+  EXPECT_LT((ground_normal(bowl, before, &slopes) - ground_normal(bowl, after, &slopes)).norm(), 1e-8);
+  const Eigen::Vector3d at_node = ground_normal(bowl, bowl.locate(line, -20.0), &slopes);
   EXPECT_NEAR(-at_node.x() / at_node.z(), line / 10.0, 1e-9);  // dz/dx = x / 10
   // Where a node of the stencil is off the valid area, the square's own normal is kept.
   const NodeSquare edge = bowl.locate(0.3, -20.5);
-  EXPECT_EQ(ground_normal(bowl, edge, true), ground_normal(bowl, edge, false));
+  EXPECT_EQ(ground_normal(bowl, edge, &slopes), ground_normal(bowl, edge));
 }
 
 TEST(SurfaceFollowing, CurvatureOfAHollowAndOfACrest) {
