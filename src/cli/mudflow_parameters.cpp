@@ -164,7 +164,7 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
                "longer sets the mud's friction");
   table.add("rheology", "turbulence", "m/s2", "turbulence coefficient xi of Voellmy", &r.turbulence, Range{0, 1e6, true, false});
   table.add("rheology", "viscosity", "Pa s", "dynamic viscosity eta (viscous and Bingham)", &r.viscosity, Range{0, 1e9, false, false});
-  table.add("rheology", "yield_stress", "Pa", "yield stress tau_y of Bingham", &r.yield_stress, Range{0, 1e7, false, false});
+  table.add("rheology", "yield_stress", "Pa", "yield stress tau_y of Voellmy and Bingham (0: Voellmy's own law)", &r.yield_stress, Range{0, 1e7, false, false});
   table.add("rheology", "internal_viscosity", "m2/s", "kinematic viscosity of the internal friction between particles",
             &r.internal_viscosity, Range{0, 1e4, false, false});
   table.add("rheology", "lateral_mixing", "-",

@@ -33,7 +33,8 @@ const char* to_string(Rheology rheology) {
 
 // Shear stresses (Pa) divided by the column's mass per area rho0 h (kg/m2):
 //   coulomb  tau = mu N                     -> mu (g cos(theta) + u^2 kappa)
-//   voellmy  tau = mu N + rho0 g u^2 / xi   -> the same plus g u^2 / (xi h)
+//   voellmy  tau = tau_y + mu N + rho0 g u^2 / xi
+//                                           -> tau_y / (rho0 h) + the same plus g u^2 / (xi h)
 //   viscous  tau = 3 eta u / h              -> 3 eta u / (rho0 h^2)   (laminar Newtonian layer)
 //   bingham  tau = tau_y + 3 eta u / h      -> tau_y / (rho0 h) + 3 eta u / (rho0 h^2)
 // and the vegetation's c |u| u for every rheology (as for rocks, docs/architecture.md section 2).
@@ -47,7 +48,7 @@ BasalResistance basal_resistance(const RheologyParameters& parameters, const Bas
       resistance.yield = mu * contact.normal_acceleration;
       break;
     case Rheology::voellmy:
-      resistance.yield = mu * contact.normal_acceleration;
+      resistance.yield = parameters.yield_stress / (mud_density * h) + mu * contact.normal_acceleration;
       resistance.quadratic = gravity / (parameters.turbulence * h);
       break;
     case Rheology::viscous:

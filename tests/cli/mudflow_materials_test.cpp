@@ -54,9 +54,10 @@ TEST(MudflowMaterials, DefaultPresetIsTheEnginesDefault) {
   EXPECT_EQ(preset["rheology"]["rheology"].get<std::string>(), to_string(engine.rheology.rheology));
   EXPECT_EQ(preset["rheology"]["friction"].get<double>(), engine.rheology.friction);
   EXPECT_EQ(preset["rheology"]["turbulence"].get<double>(), engine.rheology.turbulence);
+  EXPECT_EQ(preset["rheology"]["yield_stress"].get<double>(), engine.rheology.yield_stress);
 }
 
-// The rows of docs/mudflow.md's materials table: | `name` ... | rheology | mu | xi | density | source |.
+// The rows of docs/mudflow.md's materials table: | `name` ... | rheology | mu | xi | tau_y | density | source |.
 std::map<std::string, std::vector<std::string>> documented_presets() {
   std::ifstream file(test::source_dir() / "docs" / "mudflow.md");
   std::map<std::string, std::vector<std::string>> rows;
@@ -87,13 +88,14 @@ TEST(MudflowMaterials, DocsTableHoldsTheProgramsPresets) {
   for (const auto& [name, preset] : materials.items()) {
     ASSERT_TRUE(rows.count(name)) << name << " is not in docs/mudflow.md's table";
     const auto& cells = rows.at(name);
-    ASSERT_GE(cells.size(), 6u) << name;
+    ASSERT_GE(cells.size(), 7u) << name;
     const auto& p = preset["parameters"];
     EXPECT_NE(cells[1].find(p["rheology"]["rheology"].get<std::string>()), std::string::npos) << name;
     EXPECT_EQ(std::stod(cells[2]), p["rheology"]["friction"].get<double>()) << name;
     EXPECT_EQ(std::stod(cells[3]), p["rheology"]["turbulence"].get<double>()) << name;
-    EXPECT_EQ(std::stod(cells[4]), p["mud"]["density"].get<double>()) << name;
-    EXPECT_GT(cells[5].size(), 20u) << name << ": no source";
+    EXPECT_EQ(std::stod(cells[4]), p["rheology"]["yield_stress"].get<double>()) << name;
+    EXPECT_EQ(std::stod(cells[5]), p["mud"]["density"].get<double>()) << name;
+    EXPECT_GT(cells[6].size(), 20u) << name << ": no source";
   }
 }
 

@@ -4,15 +4,16 @@
 Usage:
   empirical_laws.py [--talus build/talus] [--out out/empirical-laws] [--docs docs]
                     [--sites A,B] [--volumes 100,1000] [--threads N] [--measure-only]
-  empirical_laws.py --choose-sites      (rewrites releases.csv from the DEM; not needed to rerun)
+                    [--material NAME] [--coarsen 2]
+  empirical_laws.py --choose-sites DEM  (rewrites that DEM's rows of releases.csv; not needed to rerun)
 
 For every release of releases.csv (site, volume) it writes the release as a depth raster on the
-DEM's grid, runs `talus mudflow` on the Tirol DEM with scenario.toml and the release's particle
-size, and measures from run.json and flow_depth_max.tif: the released volume V, the drop height
+DEM's grid, runs `talus mudflow` on that DEM with scenario.toml (and --material) and the
+release's particle size, and measures from run.json and flow_depth_max.tif: the released volume V, the drop height
 H, the travel distance L along the path, H / L and the inundated planimetric area B. It compares
 them with Rickenmann (1999), Corominas (1996) and LAHARZ (Griswold and Iverson 2008) and writes
-OUT/results.csv and OUT/empirical-laws.png; with --docs DIR it also copies them to
-DIR/mudflow-empirical-laws.csv and DIR/mudflow-empirical-laws.png.
+OUT/results.csv, OUT/summary.json and OUT/empirical-laws.png; with --docs DIR it also copies the
+CSV and the chart to DIR/mudflow-empirical-laws[-MATERIAL].csv and .png.
 """
 import argparse
 import csv
@@ -34,21 +35,29 @@ gdal.SetConfigOption("GDAL_PAM_ENABLED", "NO")  # no .aux.xml beside the DEM in 
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-DEM = os.path.join(ROOT, "data", "tirol_alr", "avaAlr.tif")
+# The terrains, by the short name releases.csv gives in its `dem` column, with the rules that
+# choose their sites (README.md, "Method"): the lowest elevation of a site, how far its
+# steepest-descent path is followed for the distance to the DEM's edge, and the sites' names.
+DEMS = {
+    "alr": {"path": os.path.join(ROOT, "data", "tirol_alr", "avaAlr.tif"),
+            "min_elevation_m": 1600.0, "path_m": 3500.0, "sites": "ABC"},
+    "hit": {"path": os.path.join(ROOT, "data", "avaframe_gar_hit_com1dfa", "avaHit", "dem.tif"),
+            "min_elevation_m": 1900.0, "path_m": 1500.0, "sites": "DE"},
+    "gar": {"path": os.path.join(ROOT, "data", "avaframe_gar_hit_com1dfa", "avaGar", "dem.tif"),
+            "min_elevation_m": 1700.0, "path_m": 1500.0, "sites": "FG"},
+}
 RELEASES = os.path.join(HERE, "releases.csv")
 SCENARIO = os.path.join(HERE, "scenario.toml")
 
 # Thresholds and rules (README.md, "Method").
 THRESHOLD_M = 0.1                 # a cell is inundated where flow_depth_max exceeds this
+FLOOR_SHARE = 0.05                # the DEM's floor: its lowest 5% of relief (README.md, "Method")
 SENSITIVITY_THRESHOLD_M = 0.5     # B is also given at this threshold (not compared with a law)
 NOMINAL_DEPTH_M = {100: 1.0, 1000: 1.5, 10000: 2.0, 100000: 3.0, 1000000: 5.0}
 TARGET_PARTICLES = 2000           # release cells x cell area / particle_size^2
 SITE_SLOPE_DEG = (25.0, 40.0)
 SITE_MIN_ACCUMULATION = 400       # D8 contributing cells (1 ha on the 5 m grid)
-SITE_MIN_ELEVATION_M = 1600.0
 SITE_SPACING_M = 400.0
-SITE_PATH_M = 3500.0              # sites whose steepest-descent path stays farthest from the DEM's edge
-SITES = 3
 
 # The laws and the bands that define "inside" (README.md, "Laws and bands").
 RICKENMANN = {"coef": 1.9, "exp_v": 0.16, "exp_h": 0.83, "upper": 5.0}
@@ -57,8 +66,8 @@ COROMINAS = {"a": -0.012, "b": -0.105, "cl": 0.386}   # debris flows, all paths;
 LAHARZ = {"coef": 20.0, "lower": 2.0, "upper": 200.0}  # B = 20 V^(2/3); band ours (README.md)
 
 
-def read_dem():
-    data = gdal.Open(DEM)
+def read_dem(name):
+    data = gdal.Open(DEMS[name]["path"])
     band = data.GetRasterBand(1)
     z = band.ReadAsArray().astype(np.float64)
     valid = z != band.GetNoDataValue()
@@ -129,11 +138,11 @@ def d8_routing(f, valid):
     return receiver, accumulation.reshape(f.shape)
 
 
-def containment(index, receiver, edge_distance, cell):
-    """The least distance to the DEM's edge along the first SITE_PATH_M of the steepest-descent
-    path from a cell (0 where the path leaves the DEM sooner)."""
+def containment(index, receiver, edge_distance, cell, path_m):
+    """The least distance to the DEM's edge along the first path_m of the steepest-descent path
+    from a cell (0 where the path leaves the DEM sooner)."""
     length, least = 0.0, edge_distance.flat[index]
-    while length < SITE_PATH_M:
+    while length < path_m:
         following = receiver[index]
         if following < 0:
             return 0.0
@@ -144,8 +153,10 @@ def containment(index, receiver, edge_distance, cell):
     return least
 
 
-def choose_sites():
-    z, valid, transform, _ = read_dem()
+def choose_sites(name):
+    """Chooses the sites of one DEM and rewrites its rows of releases.csv (the others are kept)."""
+    rules = DEMS[name]
+    z, valid, transform, _ = read_dem(name)
     cell = transform[1]
     gy, gx = np.gradient(np.where(valid, z, np.nan), cell)
     slope = np.degrees(np.arctan(np.hypot(gx, gy)))
@@ -155,31 +166,39 @@ def choose_sites():
     largest = max(NOMINAL_DEPTH_M)
     room = math.sqrt(largest / (math.pi * NOMINAL_DEPTH_M[largest])) + 2 * cell
     candidate = (valid & (slope >= SITE_SLOPE_DEG[0]) & (slope <= SITE_SLOPE_DEG[1]) &
-                 (accumulation >= SITE_MIN_ACCUMULATION) & (z >= SITE_MIN_ELEVATION_M))
+                 (accumulation >= SITE_MIN_ACCUMULATION) & (z >= rules["min_elevation_m"]))
     ranked = []
     for r, c in zip(*np.nonzero(candidate)):
         if valid[release_cells(cx[r, c], cy[r, c], room, transform, z.shape)].all():  # the largest release fits
-            ranked.append((-containment(r * z.shape[1] + c, receiver, edge_distance, cell), -accumulation[r, c], r, c))
+            ranked.append((-containment(r * z.shape[1] + c, receiver, edge_distance, cell, rules["path_m"]),
+                           -accumulation[r, c], r, c))
     chosen = []
     for _, _, r, c in sorted(ranked):
-        if len(chosen) < SITES and all(math.hypot(cx[r, c] - s[0], cy[r, c] - s[1]) >= SITE_SPACING_M for s in chosen):
+        if len(chosen) < len(rules["sites"]) and all(math.hypot(cx[r, c] - s[0], cy[r, c] - s[1]) >= SITE_SPACING_M for s in chosen):
             chosen.append((cx[r, c], cy[r, c], z[r, c], slope[r, c], accumulation[r, c]))
+    kept = [row for row in releases() if row["dem"] != name] if os.path.exists(RELEASES) else []
+    rows = []
+    for site, (x, y, zs, s, a) in zip(rules["sites"], chosen):
+        for volume, depth in sorted(NOMINAL_DEPTH_M.items()):
+            radius = math.sqrt(volume / (math.pi * depth))
+            cells = int(release_cells(x, y, radius, transform, z.shape).sum())
+            size = float("%.2g" % math.sqrt(cells * cell * cell / TARGET_PARTICLES))
+            rows.append(dict(zip(RELEASE_COLUMNS, [name, site, "%.4f" % x, "%.4f" % y, "%.1f" % zs, "%.1f" % s, int(a),
+                                                   volume, "%.2f" % radius, cells,
+                                                   "%.6g" % (volume / (cells * cell * cell)), size])))
     with open(RELEASES, "w", newline="") as f:
-        out = csv.writer(f, lineterminator="\n")
-        out.writerow(["site", "x", "y", "site_z_m", "site_slope_deg", "site_accumulation_cells", "volume_m3",
-                      "radius_m", "cells", "depth_m", "particle_size_m"])
-        for name, (x, y, zs, s, a) in zip("ABCDEFGH", chosen):
-            for volume, depth in sorted(NOMINAL_DEPTH_M.items()):
-                radius = math.sqrt(volume / (math.pi * depth))
-                cells = int(release_cells(x, y, radius, transform, z.shape).sum())
-                size = float("%.2g" % math.sqrt(cells * cell * cell / TARGET_PARTICLES))
-                out.writerow([name, "%.4f" % x, "%.4f" % y, "%.1f" % zs, "%.1f" % s, int(a), volume,
-                              "%.2f" % radius, cells, "%.6g" % (volume / (cells * cell * cell)), size])
-    print("wrote %s: %d sites" % (RELEASES, len(chosen)))
+        out = csv.DictWriter(f, RELEASE_COLUMNS, lineterminator="\n")
+        out.writeheader()
+        out.writerows(sorted(kept + rows, key=lambda row: (row["site"], int(row["volume_m3"]))))
+    print("wrote %s: %d sites on %s" % (RELEASES, len(chosen), name))
 
 
 # ---------------------------------------------------------------------------------------------
 # Running and measuring
+
+RELEASE_COLUMNS = ["dem", "site", "x", "y", "site_z_m", "site_slope_deg", "site_accumulation_cells", "volume_m3",
+                   "radius_m", "cells", "depth_m", "particle_size_m"]
+
 
 def releases(sites=None, volumes=None):
     with open(RELEASES) as f:
@@ -236,7 +255,7 @@ def measure(row, folder, dem, release):
     straight = np.hypot(cx - cx[top], cy - cy[top])
     volume = run["volumes_m3"]["released"]
     result = {
-        "site": row["site"], "volume_nominal_m3": int(row["volume_m3"]), "volume_m3": volume,
+        "dem": row["dem"], "site": row["site"], "volume_nominal_m3": int(row["volume_m3"]), "volume_m3": volume,
         "depth_m": float(row["depth_m"]), "particle_size_m": run["parameters"]["mud"]["particle_size"],
         "release_area_m2": release.sum() * cell * cell,
         "H_m": z[top] - z[reached].min(),
@@ -244,6 +263,8 @@ def measure(row, folder, dem, release):
         "B_m2": (reached & ~release).sum() * cell * cell, "B_total_m2": inundated.sum() * cell * cell,
         "B_unconnected_m2": (inundated & ~reached).sum() * cell * cell,
         "B_05_m2": (reached & ~release & (depth > SENSITIVITY_THRESHOLD_M)).sum() * cell * cell,
+        "above_floor_m": z[reached].min() - z[valid].min(),
+        "floor_m": FLOOR_SHARE * (z[valid].max() - z[valid].min()),
         "outflow_m3": run["volumes_m3"]["outflow"], "end_reason": run["end"]["reason"],
         "simulated_s": run["end"]["simulated_time_s"], "particles_initial": run["counts"]["particles"]["initial"],
         "particle_steps": run["counts"]["particle_steps"],
@@ -252,9 +273,20 @@ def measure(row, folder, dem, release):
     return result
 
 
-def censored(result):
-    """Whether more than 1% of the released mud left the DEM: L, H and B are then lower bounds."""
+def left_dem(result):
+    """Whether more than 1% of the released mud left the DEM."""
     return result["outflow_m3"] > 0.01 * result["volume_m3"]
+
+
+def reached_floor(result):
+    """Whether the mud reached the DEM's floor (its lowest inundated cell lies in the lowest
+    FLOOR_SHARE of the DEM's relief): the drop H cannot grow further on this DEM."""
+    return result["above_floor_m"] < result["floor_m"]
+
+
+def censored(result):
+    """Whether the DEM, not the flow, bounds L, H and B: the mud left it or reached its floor."""
+    return left_dem(result) or reached_floor(result)
 
 
 def compare(result):
@@ -271,14 +303,15 @@ def compare(result):
     result["B_laharz_m2"] = LAHARZ["coef"] * v ** (2.0 / 3.0)
     result["B_ratio"] = result["B_m2"] / result["B_laharz_m2"]
     result["B_inside"] = LAHARZ["lower"] / LAHARZ["coef"] <= result["B_ratio"] <= LAHARZ["upper"] / LAHARZ["coef"]
-    result["left_dem"] = censored(result)
+    result["left_dem"] = left_dem(result)
+    result["reached_floor"] = reached_floor(result)
     return result
 
 
-COLUMNS = ["site", "volume_nominal_m3", "volume_m3", "depth_m", "particle_size_m", "release_area_m2", "H_m", "L_m",
+COLUMNS = ["dem", "site", "volume_nominal_m3", "volume_m3", "depth_m", "particle_size_m", "release_area_m2", "H_m", "L_m",
            "L_straight_m", "H_over_L", "B_m2", "B_total_m2", "B_unconnected_m2", "B_05_m2", "L_rickenmann_m", "L_ratio",
            "L_inside", "HL_corominas", "HL_ratio", "HL_inside", "B_laharz_m2", "B_ratio", "B_inside",
-           "outflow_m3", "left_dem", "end_reason", "simulated_s", "wall_s", "particles_initial", "particle_steps"]
+           "outflow_m3", "left_dem", "above_floor_m", "floor_m", "reached_floor", "end_reason", "simulated_s", "wall_s", "particles_initial", "particle_steps"]
 
 
 def write_csv(results, path):
@@ -289,7 +322,7 @@ def write_csv(results, path):
             out.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
 
 
-def chart(results, path):
+def chart(results, path, title):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -298,7 +331,7 @@ def chart(results, path):
     fig, axes = plt.subplots(1, 3, figsize=(15, 5))
     v = np.logspace(1.5, 6.5, 50)
 
-    def point(ax, r, x, y):  # a run whose mud left the DEM has a red edge: its L, H and B are lower bounds
+    def point(ax, r, x, y):  # a run the DEM bounds has a red edge: its L, H and B are bounds, not values
         ax.plot(x, y, markers[r["site"]], color=colours[r["volume_nominal_m3"]], ms=7,
                 mec="r" if censored(r) else "k", mew=1.6 if censored(r) else 1.0)
 
@@ -321,6 +354,13 @@ def chart(results, path):
     ax.plot(v, fit, "k-", label="log(H/L) = -0.105 log V - 0.012")
     for r in results:
         point(ax, r, r["volume_m3"], r["H_over_L"])
+    slope = corominas_slope(results)
+    kept = [r for r in results if not censored(r)]
+    if math.isfinite(slope):
+        x = np.log10([r["volume_m3"] for r in kept])
+        y = np.log10([r["H_over_L"] for r in kept])
+        ax.plot(v, 10 ** (y.mean() + slope * (np.log10(v) - x.mean())), "b--", lw=1,
+                label="fit to the runs the DEM does not bound: slope %.3f" % slope)
     ax.set(xscale="log", yscale="log", xlabel="V (m3)", ylabel="H / L", title="Angle of reach (Corominas 1996)")
 
     ax = axes[2]
@@ -339,45 +379,87 @@ def chart(results, path):
                if any(r["site"] == s for r in results)]
     handles += [plt.Line2D([], [], ls="", marker="o", color=c, mec="k", label="10^%d m3" % round(math.log10(v)))
                 for v, c in colours.items()]
-    handles.append(plt.Line2D([], [], ls="", marker="o", color="w", mec="r", mew=1.6, label="mud left the DEM"))
+    handles.append(plt.Line2D([], [], ls="", marker="o", color="w", mec="r", mew=1.6,
+                              label="bounded by the DEM (left it or reached its floor)"))
     handles.append(plt.Line2D([], [], ls="", marker="o", mfc="none", mec="0.4", ms=4, label="B at 0.5 m (beside)"))
-    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    fig.legend(handles=handles, loc="lower center", ncol=(len(handles) + 1) // 2, fontsize=8, frameon=False)
+    fig.suptitle(title)
+    fig.tight_layout(rect=(0, 0.1, 1, 0.96))
     fig.savefig(path, dpi=110)
+
+
+def corominas_slope(results):
+    """The least-squares slope of log10(H/L) on log10(V) over the runs the DEM does not bound
+    (NaN with fewer than two volumes)."""
+    kept = [r for r in results if not censored(r)]
+    if len({r["volume_nominal_m3"] for r in kept}) < 2:
+        return float("nan")
+    x = np.log10([r["volume_m3"] for r in kept])
+    y = np.log10([r["H_over_L"] for r in kept])
+    return float(np.polyfit(x, y, 1)[0])
+
+
+def summary(results, material):
+    inside = {law: int(sum(bool(r[key]) for r in results)) for law, key in
+              (("rickenmann", "L_inside"), ("corominas", "HL_inside"), ("laharz", "B_inside"))}
+    slope = corominas_slope(results)
+    return {"material": material or "default", "runs": len(results),
+            "runs_not_bounded_by_the_dem": int(sum(not censored(r) for r in results)),
+            "inside": inside, "corominas_slope": slope, "corominas_slope_law": COROMINAS["b"],
+            "corominas_slope_inside": bool(abs(slope - COROMINAS["b"]) <= 0.5 * abs(COROMINAS["b"])),
+            "median_B_ratio": float(np.median([r["B_ratio"] for r in results])),
+            "median_L_ratio": float(np.median([r["L_ratio"] for r in results]))}
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--talus", default=os.path.join(ROOT, "build", "talus"))
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "empirical-laws"))
-    parser.add_argument("--docs", help="also copy the CSV and the chart into this folder")
+    parser.add_argument("--docs", help="also copy the CSV, the summary and the chart into this folder")
     parser.add_argument("--scenario", default=SCENARIO, help="scenario TOML (default: scenario.toml here)")
+    parser.add_argument("--material", help="talus --material NAME (default: Talus's default material)")
+    parser.add_argument("--voellmy", metavar="MU,XI,TAU_Y",
+                        help="run Voellmy with these friction (-), turbulence (m/s2) and yield stress (Pa) instead of "
+                             "the material's: the scenario with a [rheology] section added, written to OUT")
     parser.add_argument("--sites", help="comma-separated site names (default: all)")
     parser.add_argument("--volumes", help="comma-separated volumes in m3 (default: all)")
     parser.add_argument("--threads", type=int, default=0, help="talus --threads (0: all cores)")
     parser.add_argument("--coarsen", type=float, default=1.0,
                         help="multiply every particle size by this (the case test uses 2)")
     parser.add_argument("--measure-only", action="store_true", help="measure the runs already in --out")
-    parser.add_argument("--choose-sites", action="store_true", help="rewrite releases.csv from the DEM")
+    parser.add_argument("--choose-sites", metavar="DEM", choices=sorted(DEMS),
+                        help="rewrite that DEM's rows of releases.csv from the DEM")
     args = parser.parse_args()
     if args.choose_sites:
-        choose_sites()
+        choose_sites(args.choose_sites)
         return
     chosen = releases(args.sites.split(",") if args.sites else None,
                       [int(float(v)) for v in args.volumes.split(",")] if args.volumes else None)
-    dem = read_dem()
+    dems = {name: read_dem(name) for name in sorted({row["dem"] for row in chosen})}
     os.makedirs(args.out, exist_ok=True)
+    if args.voellmy:
+        friction, turbulence, yield_stress = (float(value) for value in args.voellmy.split(","))
+        with open(args.scenario) as f:
+            text = f.read()
+        args.scenario = os.path.join(args.out, "scenario.toml")
+        with open(args.scenario, "w") as f:
+            f.write(text + '\n[rheology]\nrheology = "voellmy"\nfriction = %g\nturbulence = %g\nyield_stress = %g\n' %
+                    (friction, turbulence, yield_stress))
     results = []
     environment = dict(os.environ, OMP_WAIT_POLICY="passive")
     for row in chosen:
         name = "%s-%s" % (row["site"], row["volume_m3"])
         folder = os.path.join(args.out, name)
+        dem = dems[row["dem"]]
         release = write_release(row, os.path.join(args.out, name + "-release.tif"), dem)
         wall = float("nan")
         if not args.measure_only:
-            command = [args.talus, "mudflow", "--dem", DEM, "--release", os.path.join(args.out, name + "-release.tif"),
+            command = [args.talus, "mudflow", "--dem", DEMS[row["dem"]]["path"],
+                       "--release", os.path.join(args.out, name + "-release.tif"),
                        "--scenario", args.scenario, "--particle-size", "%g" % (float(row["particle_size_m"]) * args.coarsen),
                        "--threads", str(args.threads), "--out", folder]
+            if args.material:
+                command += ["--material", args.material]
             start = time.monotonic()
             done = subprocess.run(command, env=environment, capture_output=True, text=True)
             wall = time.monotonic() - start
@@ -397,14 +479,25 @@ def main():
                result["L_ratio"], "" if result["L_inside"] else "!", result["HL_ratio"],
                "" if result["HL_inside"] else "!", result["B_ratio"], "" if result["B_inside"] else "!",
                result["end_reason"], result["simulated_s"], wall,
-               ", %.0f m3 left the DEM" % result["outflow_m3"] if result["left_dem"] else ""), flush=True)
+               (", %.0f m3 left the DEM" % result["outflow_m3"] if result["left_dem"] else "") +
+               (", reached the DEM's floor" if result["reached_floor"] else "")), flush=True)
+    totals = summary(results, args.material)
+    if args.voellmy:
+        totals["voellmy"] = args.voellmy
     write_csv(results, os.path.join(args.out, "results.csv"))
-    chart(results, os.path.join(args.out, "empirical-laws.png"))
+    with open(os.path.join(args.out, "summary.json"), "w") as f:
+        json.dump(totals, f, indent=2)
+    chart(results, os.path.join(args.out, "empirical-laws.png"),
+          "Talus mud flow, material %s, against the empirical laws of debris flows" % (args.material or "debris-flow (default)"))
     if args.docs:
-        shutil.copy(os.path.join(args.out, "results.csv"), os.path.join(args.docs, "mudflow-empirical-laws.csv"))
-        shutil.copy(os.path.join(args.out, "empirical-laws.png"), os.path.join(args.docs, "mudflow-empirical-laws.png"))
-    for law, key in (("Rickenmann", "L_inside"), ("Corominas", "HL_inside"), ("LAHARZ", "B_inside")):
-        print("%-10s inside its band: %d of %d runs" % (law, sum(r[key] for r in results), len(results)))
+        stem = "mudflow-empirical-laws" + ("-" + args.material if args.material else "")
+        shutil.copy(os.path.join(args.out, "results.csv"), os.path.join(args.docs, stem + ".csv"))
+        shutil.copy(os.path.join(args.out, "empirical-laws.png"), os.path.join(args.docs, stem + ".png"))
+    for law, key in (("Rickenmann", "rickenmann"), ("Corominas", "corominas"), ("LAHARZ", "laharz")):
+        print("%-10s inside its band: %d of %d runs" % (law, totals["inside"][key], len(results)))
+    print("Corominas  slope of log10(H/L) on log10(V) over the %d runs the DEM does not bound: %.3f (law %.3f, "
+          "+-50%%: %s)" % (totals["runs_not_bounded_by_the_dem"], totals["corominas_slope"], COROMINAS["b"],
+           "inside" if totals["corominas_slope_inside"] else "outside"))
 
 
 if __name__ == "__main__":

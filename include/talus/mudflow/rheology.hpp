@@ -10,7 +10,7 @@ namespace talus {
 enum class Rheology {
   viscous,   // the paper's viscous substance: laminar basal shear 3 eta u / h
   coulomb,   // basal shear mu N
-  voellmy,   // mu N + rho g u^2 / xi
+  voellmy,   // tau_y + mu N + rho g u^2 / xi (tau_y 0: Voellmy's own law)
   bingham,   // yield stress tau_y plus laminar viscous shear
 };
 
@@ -21,10 +21,10 @@ const char* to_string(Rheology rheology);
 struct RheologyParameters {
   Rheology rheology = Rheology::voellmy;
   // Defaults: the debris-flow material (src/cli/mudflow_materials.toml, docs/mudflow.md "Materials").
-  double friction = 0.2;           // Coulomb friction coefficient mu of coulomb and Voellmy (-)
-  double turbulence = 200;         // xi of Voellmy (m/s2)
+  double friction = 0.1;           // Coulomb friction coefficient mu of coulomb and Voellmy (-)
+  double turbulence = 500;         // xi of Voellmy (m/s2)
   double viscosity = 100;          // dynamic viscosity eta (Pa s): viscous and Bingham
-  double yield_stress = 500;       // tau_y of Bingham (Pa)
+  double yield_stress = 1000;      // tau_y of Voellmy and Bingham (Pa); 0: Voellmy's own law
   double internal_viscosity = 0.5; // kinematic viscosity of the SPH internal friction (m2/s)
   // C of the lateral mixing (-): each column's velocity relaxes towards the kernel mean around it
   // by a drag (C / s) |u - u_mean| (u - u_mean), s = sqrt(m / sigma) its footprint's side (AvaFrame
@@ -36,7 +36,7 @@ struct RheologyParameters {
 // deceleration opposite the velocity that grows with the speed u:
 //   deceleration = yield + linear u + quadratic u^2   (m/s2).
 struct BasalResistance {
-  double yield = 0;       // m/s2: Coulomb mu N / (rho0 h) or Bingham tau_y / (rho0 h)
+  double yield = 0;       // m/s2: Coulomb mu N / (rho0 h), Bingham tau_y / (rho0 h), Voellmy both
   double linear = 0;      // 1/s: laminar 3 eta / (rho0 h^2)
   double quadratic = 0;   // 1/m: Voellmy g / (xi h) plus vegetation c
 };
@@ -49,7 +49,7 @@ struct BasalContact {
 };
 
 // Basal resistance of the chosen rheology (docs/mudflow.md "Rheology"; docs/architecture.md section 2):
-// coulomb mu N, voellmy mu N + rho0 g u^2 / xi, viscous 3 eta u / h, bingham tau_y + 3 eta u / h,
+// coulomb mu N, voellmy tau_y + mu N + rho0 g u^2 / xi, viscous 3 eta u / h, bingham tau_y + 3 eta u / h,
 // each plus the vegetation's c |u| u; mud_density rho0 (kg/m3), gravity g (m/s2).
 BasalResistance basal_resistance(const RheologyParameters& parameters, const BasalContact& contact,
                                  double mud_density, double gravity);

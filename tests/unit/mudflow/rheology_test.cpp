@@ -51,8 +51,12 @@ TEST(Rheology, EachLawGivesItsStressOverRhoH) {
   EXPECT_DOUBLE_EQ(r.quadratic, 0.01);  // vegetation only
   p.rheology = Rheology::voellmy;
   r = basal_resistance(p, c, kRho, kG);
-  EXPECT_DOUBLE_EQ(r.yield, 0.3 * 9.0);
+  EXPECT_DOUBLE_EQ(r.yield, 300.0 / rho_h + 0.3 * 9.0);  // (tau_y + mu N) / (rho h)
   EXPECT_DOUBLE_EQ(r.quadratic, kRho * kG / 400.0 / rho_h + 0.01);  // rho g u^2 / xi / (rho h)
+  p.yield_stress = 0.0;  // Voellmy's own law
+  r = basal_resistance(p, c, kRho, kG);
+  EXPECT_DOUBLE_EQ(r.yield, 0.3 * 9.0);
+  p.yield_stress = 300.0;
   p.rheology = Rheology::viscous;
   r = basal_resistance(p, c, kRho, kG);
   EXPECT_EQ(r.yield, 0.0);
@@ -94,18 +98,47 @@ TEST(Rheology, ImplicitStepSolvesTheBackwardEulerEquation) {
 }
 
 TEST(Rheology, VoellmyTerminalSpeedOnASlope) {
-  // A column on a slope where gravity's pull g sin(theta) balances mu g cos(theta) + g u^2 / (xi h)
-  // reaches u = sqrt(xi h (sin - mu cos)): kick and resist with small steps until steady.
+  // A column on a slope where gravity's pull g sin(theta) balances
+  // tau_y / (rho h) + mu g cos(theta) + g u^2 / (xi h) reaches
+  // u = sqrt(xi h (sin - mu cos - tau_y / (rho g h))): kick and resist with small steps until
+  // steady. With tau_y = 0 it is Voellmy's own terminal speed.
   RheologyParameters p;
   p.rheology = Rheology::voellmy;
   const double theta = 0.5, h = 1.5, mu = 0.2;
   p.friction = mu;
   p.turbulence = 500.0;
-  const BasalResistance r = basal_resistance(p, contact(h, kG * std::cos(theta)), kRho, kG);
-  double u = 0;
-  for (int k = 0; k < 200000; ++k) u = resisted_speed(r, u + kG * std::sin(theta) * 1e-3, 1e-3);
-  const double expected = std::sqrt(500.0 * h * (std::sin(theta) - mu * std::cos(theta)));
-  EXPECT_NEAR(u, expected, 2e-3 * expected);  // 0.2%: first-order splitting error at dt = 1 ms
+  for (const double tau_y : {0.0, 1000.0}) {
+    p.yield_stress = tau_y;
+    const BasalResistance r = basal_resistance(p, contact(h, kG * std::cos(theta)), kRho, kG);
+    double u = 0;
+    for (int k = 0; k < 200000; ++k) u = resisted_speed(r, u + kG * std::sin(theta) * 1e-3, 1e-3);
+    const double expected =
+        std::sqrt(500.0 * h * (std::sin(theta) - mu * std::cos(theta) - tau_y / (kRho * kG * h)));
+    EXPECT_NEAR(u, expected, 2e-3 * expected) << tau_y;  // 0.2%: first-order splitting error at dt = 1 ms
+  }
+}
+
+TEST(Rheology, AYieldStressHoldsALayerThinnerThanItsStoppingDepth) {
+  // Voellmy with a yield stress holds a layer at rest on a slope while
+  // rho g h (sin - mu cos) <= tau_y, i.e. below h_stop = tau_y / (rho g (sin - mu cos)), and lets a
+  // thicker one accelerate: the reason small releases stop and large ones run on.
+  RheologyParameters p;
+  p.rheology = Rheology::voellmy;
+  p.friction = 0.1;
+  p.turbulence = 500.0;
+  p.yield_stress = 1000.0;
+  const double theta = 20.0 * 3.14159265358979 / 180.0;
+  const double stopping = p.yield_stress / (kRho * kG * (std::sin(theta) - p.friction * std::cos(theta)));
+  for (const double factor : {0.9, 1.1}) {
+    const BasalResistance r = basal_resistance(p, contact(factor * stopping, kG * std::cos(theta)), kRho, kG);
+    double u = 0;
+    for (int k = 0; k < 1000; ++k) u = resisted_speed(r, u + kG * std::sin(theta) * 1e-3, 1e-3);
+    if (factor < 1.0) {
+      EXPECT_EQ(u, 0.0) << "a layer of " << factor * stopping << " m";
+    } else {
+      EXPECT_GT(u, 0.1) << "a layer of " << factor * stopping << " m";
+    }
+  }
 }
 
 }  // namespace
