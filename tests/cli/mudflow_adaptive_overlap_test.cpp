@@ -2,16 +2,16 @@
 // `talus mudflow` with 1.25 m particles, adaptive (released at 5 m, fission down to 1.25 m where
 // the pressure varies, fusion where the flow is calm, individual time steps) and uniform (every
 // particle 1.25 m, one global step), every other parameter at its default, each run until the
-// flow stops (--duration 600: the energy criterion ends both near 290 s). Their deposit areas
-// must overlap with an IoU of at least 0.82.
+// flow stops (--duration 600: the energy criterion ends both). Their deposit areas must overlap
+// with an IoU of at least 0.84.
 //
-// Why 1.25 m and 0.82: the IoU of two uniform runs that differ only in the seed (the release
-// jitter) is the noise floor of the metric. With the defaults before issue 20 it was 0.92 at
-// 1.25 m, but 0.81 at 2.5 m and 0.69 at 5 m (docs/mudflow-speed-accuracy.md), and the bar was
-// 0.9. The debris-flow default material (issue 20) spreads the deposit thinner over more than
-// twice the area (about 1810 cells against 740), and the floor at 1.25 m fell to 0.876 (seeds 1
-// and 2, 2026-12-02), below the old bar for any method; adaptive against uniform measured 0.861.
-// The two runs take about 100 s and 30 s of one core.
+// Why 1.25 m and 0.84: the IoU of two uniform runs that differ only in the seed (the release
+// jitter) is the noise floor of the metric. With the default material's yield stress (issue 37)
+// it is 0.857 at 1.25 m, 0.809 at 2.5 m and 0.755 at 5 m (docs/mudflow-speed-accuracy.md,
+// 2026-12-06): a lobe stops whole where a few of its particles fall below the stopping depth.
+// Adaptive against uniform measured 0.850 there, within that floor; the bar is 0.98 of it.
+// (Before, with no yield stress, the floor was 0.915 and the bar 0.86.) The two runs take about
+// 25 s and 10 s of one core.
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -65,13 +65,12 @@ TEST(MudflowAdaptiveOverlap, AdaptiveDepositMatchesUniformFinestParticles) {
     both += a && b ? 1 : 0;
     either += a || b ? 1 : 0;
   }
-  ASSERT_GT(either, 1000u);  // the deposit covers about 1810 cells of 25 m2
+  ASSERT_GT(either, 1000u);  // the deposit covers about 2450 cells of 25 m2
   const double iou = static_cast<double>(both) / static_cast<double>(either);
   RecordProperty("deposit_iou", std::to_string(iou));
-  // 0.86: 0.94 of the seed-to-seed floor 0.915 (measured 0.915, 2026-12-03, with the layers
-  // drawn over each particle's smoothing radius; 0.861 against a floor of 0.876 before).
-  EXPECT_GE(iou, 0.86) << both << " of " << either << " cells";
-  // The adaptivity does its work: 4.1 times fewer particle-steps (15.0 million against 61.1).
+  // 0.84: 0.98 of the seed-to-seed floor 0.857 (measured 0.850, 2026-12-06).
+  EXPECT_GE(iou, 0.84) << both << " of " << either << " cells";
+  // The adaptivity does its work: 4.1 times fewer particle-steps (9.2 million against 38.2).
   EXPECT_LT(2.5 * static_cast<double>(particle_steps(root / "adaptive")),
             static_cast<double>(particle_steps(root / "uniform")));
   fs::remove_all(root);
