@@ -168,8 +168,8 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
   table.add("rheology", "internal_viscosity", "m2/s", "kinematic viscosity of the internal friction between particles",
             &r.internal_viscosity, Range{0, 1e4, false, false});
   table.add("rheology", "lateral_mixing", "-",
-            "C of the drag (C / s) |u - u_mean| (u - u_mean) of each column towards the kernel mean velocity around "
-            "it, s its footprint's side (com1DFA's artificial viscosity: 100); 0 none",
+            "C of the drag (C / s) |u - u_mean| (u - u_mean) of each column towards the mean velocity of its "
+            "neighbours, s its footprint's side (com1DFA's artificial viscosity: 100); 0 none",
             &r.lateral_mixing, Range{0, 1e4, false, false});
   table.add("deposition", "stop_speed", "m/s", "mud slower than this for stop_duration, and held by the bed, deposits",
             &s.stop_speed, Range{0, 100, false, false});

@@ -87,9 +87,11 @@ FlowAcceleration flow_acceleration(const ParticleSet& particles, std::size_t i, 
   }
   const Eigen::Vector3d total(px + fx, py + fy, fz - constants.gravity);
   FlowAcceleration result{tangent_part(total, normals.at(i)), closing};
-  if (constants.mean_velocity && sigma_i > 0.0) {
-    const double own = std::max(sigma_i - weights, 0.0);  // m_i W(0, R_s,i), the rest of sigma_i
-    result.mean_velocity = (Eigen::Vector3d(mvx, mvy, mvz) + own * Eigen::Vector3d(vxi, vyi, vzi)) / (own + weights);
+  if (constants.mean_velocity) {
+    // The neighbours' mean, i itself left out: its own term m_i W(0) is about 40% of sigma_i at
+    // 18 neighbours, and with it the departure would read 0.6 of the difference to the mud around.
+    result.mean_velocity = weights > 0.0 ? Eigen::Vector3d(Eigen::Vector3d(mvx, mvy, mvz) / weights)
+                                         : Eigen::Vector3d(vxi, vyi, vzi);
   }
   return result;
 }

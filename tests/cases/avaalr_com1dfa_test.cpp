@@ -284,20 +284,21 @@ TEST(Com1dfaPaths, TheAvaAlrScenarioHoldsOnAvaGarAndAvaHit) {
 // (validation/avaalr_com1dfa/com1dfa_physics.toml: its Voellmy friction, release thickness,
 // vertical-column pressure, artificial viscosity as `[rheology] lateral_mixing = 100`, its node
 // normals and its curvature over one step; issue 37, item 2; docs/validation.md, point 13; about
-// 25 s on 2 cores). Measured at seed 1 with the default fusion:
-// - avaGar: IoU 0.839, area +3.7%, runout -0.6%, peak velocity -6.6%: issue 37's targets met;
-// - avaHit: IoU 0.912, area -4.2%, runout -1.4%, peak velocity -1.6%: met;
-// - avaAlr: IoU 0.786, area +22.2%, runout +0.2%, peak velocity -2.0%: not met (the flow
-//   spreads over a ridge a cell or two wide and into the side channel); asserted at IoU 0.76 and
-//   area within 25%.
+// 25 s on 2 cores). Measured at seed 1 with the default fusion, the lateral mixing drawing each
+// column towards its neighbours' mean velocity (its own left out):
+// - avaGar: IoU 0.853, area -4.6%, runout +0.9%, peak velocity -6.5%: issue 37's targets met;
+// - avaHit: IoU 0.925, area -5.3%, runout -1.2%, peak velocity -4.2%: met;
+// - avaAlr: IoU 0.859, area +11.4%, runout +1.6%, peak velocity -3.9%: all met but the area
+//   (the flow still spreads over a ridge a cell or two wide and along the fan's east edge);
+//   asserted within 15%.
 TEST(Com1dfaPaths, Com1dfasPhysicsOnAllThreePaths) {
   GDALAllRegister();
   struct Expected {
     Path path;
     double least_iou, area_tolerance;
   };
-  for (const Expected& e : {Expected{other_path("avaGar"), 0.80, 0.10}, Expected{other_path("avaHit"), 0.88, 0.10},
-                            Expected{ava_alr(), 0.76, 0.25}}) {
+  for (const Expected& e : {Expected{other_path("avaGar"), 0.83, 0.10}, Expected{other_path("avaHit"), 0.90, 0.10},
+                            Expected{ava_alr(), 0.83, 0.15}}) {
     SCOPED_TRACE(e.path.dem.string());
     const fs::path root = test::fresh_folder("com1dfa_physics_" + e.path.dem.parent_path().filename().string());
     run_case(e.path, root, case_dir() / "com1dfa_physics.toml");

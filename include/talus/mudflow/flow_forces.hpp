@@ -42,7 +42,7 @@ struct FlowForceConstants {
   double gravity = 9.81;           // m/s2
   double internal_viscosity = 0.5; // nu (m2/s)
   PressureColumn pressure = PressureColumn::normal;
-  bool mean_velocity = false;      // measure the kernel mean velocity (for the lateral mixing)
+  bool mean_velocity = false;      // measure the neighbours' mean velocity (for the lateral mixing)
 };
 
 // cos^2(theta) of the thin-layer pressure Pi / sigma^2 at a foot of slope cosine cos_slope, or 1
@@ -53,8 +53,9 @@ double pressure_slope_factor(PressureColumn column, double cos_slope);
 struct FlowAcceleration {
   Eigen::Vector3d acceleration;  // m/s2: pressure, internal friction and gravity, tangent to the ground
   double closing_speed = 0;      // m/s: the fastest approach_speed of a neighbour, at least 0 (time_levels.hpp)
-  // m/s: with FlowForceConstants::mean_velocity, the SPH mean of the velocities around i, its own
-  // included, with the density's weights (sum_j m_j W_ij u_j / sigma_i); else zero.
+  // m/s: with FlowForceConstants::mean_velocity, the SPH mean of the neighbours' velocities, i's
+  // own left out, with the density's weights (sum_{j != i} m_j W_ij u_j / sum_{j != i} m_j W_ij;
+  // i's own velocity where it has no neighbour); else zero.
   Eigen::Vector3d mean_velocity = Eigen::Vector3d::Zero();
 };
 

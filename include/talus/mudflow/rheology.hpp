@@ -26,7 +26,7 @@ struct RheologyParameters {
   double viscosity = 100;          // dynamic viscosity eta (Pa s): viscous and Bingham
   double yield_stress = 1000;      // tau_y of Voellmy and Bingham (Pa); 0: Voellmy's own law
   double internal_viscosity = 0.5; // kinematic viscosity of the SPH internal friction (m2/s)
-  // C of the lateral mixing (-): each column's velocity relaxes towards the kernel mean around it
+  // C of the lateral mixing (-): each column's velocity relaxes towards its neighbours' mean
   // by a drag (C / s) |u - u_mean| (u - u_mean), s = sqrt(m / sigma) its footprint's side (AvaFrame
   // com1DFA's artificial viscosity, subgridMixingFactor = 100); 0: none.
   double lateral_mixing = 0;
