@@ -151,6 +151,10 @@ ParameterTable mudflow_parameter_table(MudflowOptions& o) {
             "the ground normal is interpolated bilinearly between normals at the nodes (each the mean slope of the "
             "node's four squares), as in com1DFA, instead of each square's own",
             &s.node_normals);
+  table.add("contact", "step_normal", "",
+            "gravity's pull along the ground is taken on the normal averaged between the foot's and the ground's one "
+            "step ahead along the velocity, as in com1DFA, instead of the foot's alone",
+            &s.step_normal);
   table.add("contact", "curvature_span", "m",
             "kappa is measured between the ground normals this far apart along the velocity (at least one DEM cell and "
             "the particle's spacing)",

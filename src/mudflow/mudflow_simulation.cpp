@@ -354,7 +354,16 @@ void MudflowRun::update_forces(std::size_t i) {
   if (p_.state[i] != ParticleState::flowing) return;
   const double g = s_.gravity;
   const FlowAcceleration forces = flow_acceleration(p_, i, neighbours_[i], normals_, forces_);
-  const Eigen::Vector3d& a = forces.acceleration;
+  Eigen::Vector3d a = forces.acceleration;
+  if (s_.step_normal) {
+    // [contact] step_normal: gravity's pull along the ground on the normal averaged over the
+    // step ahead (docs/mudflow.md section 6), the rest of the acceleration as it was.
+    const Eigen::Vector3d foot = normals_.at(i);
+    const Eigen::Vector3d across = step_averaged_normal(ground_, foot, p_.x[i], p_.y[i], p_.velocity(i),
+                                                        step_of(p_.level[i]), node_slopes());
+    const Eigen::Vector3d weight(0.0, 0.0, -g);
+    a = tangent_part(a + tangent_part(weight, across) - tangent_part(weight, foot), foot);
+  }
   p_.ax[i] = a.x();
   p_.ay[i] = a.y();
   p_.az[i] = a.z();

@@ -73,6 +73,15 @@ Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& squar
   return Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized();
 }
 
+// A midpoint rule for the ground's turn under the particle during its step: on a bend the pull
+// along the ground is the one the particle meets on average, not the one it leaves.
+Eigen::Vector3d step_averaged_normal(const GroundModel& ground, const Eigen::Vector3d& foot, double x, double y,
+                                     const Eigen::Vector3d& velocity, double step, const NodeSlopes* node_slopes) {
+  const double ahead_x = x + velocity.x() * step, ahead_y = y + velocity.y() * step;
+  if (!ground.contains(ahead_x, ahead_y)) return foot;
+  return (foot + ground_normal(ground, ground.locate(ahead_x, ahead_y), node_slopes)).normalized();
+}
+
 Eigen::Vector3d turned_into_plane(const Eigen::Vector3d& v, const Eigen::Vector3d& n) {
   const Eigen::Vector3d tangent = tangent_part(v, n);
   const double length = tangent.norm();

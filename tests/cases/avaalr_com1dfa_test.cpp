@@ -283,22 +283,21 @@ TEST(Com1dfaPaths, TheAvaAlrScenarioHoldsOnAvaGarAndAvaHit) {
 // One scenario of com1DFA's physics for all three paths, nothing chosen per case
 // (validation/avaalr_com1dfa/com1dfa_physics.toml: its Voellmy friction, release thickness,
 // vertical-column pressure, artificial viscosity as `[rheology] lateral_mixing = 100`, its node
-// normals and its curvature over one step; issue 37, item 2; docs/validation.md, point 13; about
-// 25 s on 2 cores). Measured at seed 1 with the default fusion, the lateral mixing drawing each
-// column towards its neighbours' mean velocity (its own left out):
-// - avaGar: IoU 0.853, area -4.6%, runout +0.9%, peak velocity -6.5%: issue 37's targets met;
-// - avaHit: IoU 0.925, area -5.3%, runout -1.2%, peak velocity -4.2%: met;
-// - avaAlr: IoU 0.859, area +11.4%, runout +1.6%, peak velocity -3.9%: all met but the area
-//   (the flow still spreads over a ridge a cell or two wide and along the fan's east edge);
-//   asserted within 15%.
+// normals, its gravity on the normal averaged over the step and its curvature over one step;
+// issue 37, item 2; docs/validation.md, points 13-15; about 25 s on 2 cores). The bars are issue
+// 37's, the IoU raised to 0.01-0.03 below each measured figure (issue 37: 0.8), area
+// within 10%, runout within 5%, peak velocity within 10%. Measured at seed 1, default fusion:
+// - avaGar: IoU 0.855, area -5.8%, runout +0.6%, peak velocity -6.7%;
+// - avaHit: IoU 0.927, area -5.6%, runout -1.2%, peak velocity -3.8%;
+// - avaAlr: IoU 0.866, area +9.1%, runout +0.7%, peak velocity -3.6% (seed 2: 0.867, +10.1%).
 TEST(Com1dfaPaths, Com1dfasPhysicsOnAllThreePaths) {
   GDALAllRegister();
   struct Expected {
     Path path;
     double least_iou, area_tolerance;
   };
-  for (const Expected& e : {Expected{other_path("avaGar"), 0.83, 0.10}, Expected{other_path("avaHit"), 0.90, 0.10},
-                            Expected{ava_alr(), 0.83, 0.15}}) {
+  for (const Expected& e : {Expected{other_path("avaGar"), 0.84, 0.10}, Expected{other_path("avaHit"), 0.90, 0.10},
+                            Expected{ava_alr(), 0.85, 0.10}}) {
     SCOPED_TRACE(e.path.dem.string());
     const fs::path root = test::fresh_folder("com1dfa_physics_" + e.path.dem.parent_path().filename().string());
     run_case(e.path, root, case_dir() / "com1dfa_physics.toml");

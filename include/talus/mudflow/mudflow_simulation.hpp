@@ -63,6 +63,7 @@ struct MudflowSettings {
   // Ground contact.
   bool curvature = true;            // the basal normal stress includes the centripetal term rho0 h u^2 kappa
   bool node_normals = false;        // normals interpolated between the nodes' (smooth), not the squares' own
+  bool step_normal = false;         // gravity along the normal averaged over the step ahead, not the foot's
   double curvature_span = 20;       // m: kappa is measured between the ground normals this far apart along
                                     // the velocity (at least one cell and the particle's spacing)
   // Rheology, deposition and entrainment.

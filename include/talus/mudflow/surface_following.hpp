@@ -49,6 +49,13 @@ class NodeSlopes {
 Eigen::Vector3d ground_normal(const GroundModel& ground, const NodeSquare& square,
                               const NodeSlopes* node_slopes = nullptr);
 
+// The unit normal averaged over a step (AvaFrame com1DFA's gravity normal): the mean of the foot's
+// normal `foot` and the ground's normal at (x, y) + velocity x step, normalised; `foot` where that
+// place is off the ground model's valid area.
+Eigen::Vector3d step_averaged_normal(const GroundModel& ground, const Eigen::Vector3d& foot, double x, double y,
+                                     const Eigen::Vector3d& velocity, double step,
+                                     const NodeSlopes* node_slopes = nullptr);
+
 // The part of v in the plane of unit normal n.
 inline Eigen::Vector3d tangent_part(const Eigen::Vector3d& v, const Eigen::Vector3d& n) { return v - v.dot(n) * n; }
 

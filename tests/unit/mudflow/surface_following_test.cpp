@@ -101,5 +101,25 @@ TEST(SurfaceFollowing, CurvatureOfAHollowAndOfACrest) {
   EXPECT_EQ(curvature_along(hollow, 20.0, -20.0, Eigen::Vector3d(0, 0, 1), 1.0), 0.0);
 }
 
+TEST(SurfaceFollowing, TheStepNormalIsTheMeanOfTheFootsAndTheOneAhead) {
+  // On a plane the normal ahead is the foot's; across a kink from a 0.4 slope to a flat, the mean
+  // of the two, normalised; off the DEM the foot's alone.
+  const GroundModel flat_plane = plane();
+  const NodeSquare square = flat_plane.locate(10.0, -50.0);
+  const Eigen::Vector3d foot = ground_normal(flat_plane, square);
+  const Eigen::Vector3d same =
+      step_averaged_normal(flat_plane, foot, 10.0, -50.0, Eigen::Vector3d(3.0, 1.0, -1.2), 2.0);
+  EXPECT_NEAR((same - foot).norm(), 0.0, 1e-12);
+  const GroundModel kink = make_ground(local_spec(100, 100, 1.0),
+                                       [](double x, double) { return x < 50.0 ? 100.0 - 0.4 * x : 80.0; },
+                                       fast_material(0, 0, 0.5));
+  const Eigen::Vector3d before = ground_normal(kink, kink.locate(45.5, -50.5));
+  const Eigen::Vector3d across = step_averaged_normal(kink, before, 45.5, -50.5, Eigen::Vector3d(5.0, 0.0, -2.0), 2.0);
+  const Eigen::Vector3d expected = (before + Eigen::Vector3d(0.0, 0.0, 1.0)).normalized();
+  EXPECT_NEAR((across - expected).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(across.norm(), 1.0, 1e-12);
+  EXPECT_EQ(step_averaged_normal(kink, before, 45.5, -50.5, Eigen::Vector3d(500.0, 0.0, 0.0), 1.0), before);
+}
+
 }  // namespace
 }  // namespace talus
