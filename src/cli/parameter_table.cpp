@@ -180,9 +180,10 @@ void ParameterTable::apply(const toml::table& sections, Origin origin, const std
                                                  : parse_count_or_auto(source + ": " + where, *text);
               if (!keep) *value = parsed;
             } else if constexpr (std::is_same_v<T, bool>) {
-              const auto flag = node.value<bool>();
+              // Only a TOML boolean: toml++ would read 1 or 3 as true.
+              const auto* flag = node.as_boolean();
               if (!flag) throw InputError(source + ": " + where + " must be true or false");
-              if (!keep) *value = *flag;
+              if (!keep) *value = flag->get();
             } else {
               const auto integer = node.value<std::int64_t>();
               // No wrap-around: a value the target type cannot hold is refused, not cast.

@@ -397,6 +397,7 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
   std::ofstream(root / "old_friction.toml") << "[rheology]\nfriction_factor = 0.5\n";
   std::ofstream(root / "bad_friction.toml") << "[rheology]\nfriction = 1.5\n";
   std::ofstream(root / "bad_material.toml") << "[mud]\nmaterial = \"honey\"\n";
+  std::ofstream(root / "number_as_boolean.toml") << "[contact]\nstep_normal = 1\n";
   const auto out = root / "out";
   const auto sample = sample_arguments(out, "2");
   struct Case {
@@ -436,6 +437,8 @@ TEST(MudflowUsage, RefusesBadInputsWithOneLineAndWritesNothing) {
        "--material honey: expected one of debris-flow, granular, mud-flow, rock-avalanche, snow-avalanche"},
       {with(sample, {"--scenario", (root / "bad_material.toml").string()}),
        "bad_material.toml (scenario): [mud] material honey: expected one of debris-flow, granular, mud-flow"},
+      {with(sample, {"--scenario", (root / "number_as_boolean.toml").string()}),
+       "number_as_boolean.toml (scenario): [contact] step_normal must be true or false"},
       {dem_missing, "missing.tif (DEM): file not found"},
       {with(sample, {"--erodible", (root / "missing_erodible.tif").string()}), "missing_erodible.tif (erodible): file not found"},
       {with(sample, {"--depth", "0.0001"}), "--depth 0.0001: expected 0 (the release file's depths) or 0.01-100 m"},
