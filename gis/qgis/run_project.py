@@ -6,8 +6,10 @@ usage: run_project.py OUT_DIR PROCESS DEM [RELEASE]
 
 PROCESS is rockfall, mudflow or study. Writes into OUT_DIR:
 - project.qgz: every layer of the run styled (its .qml) under its title (its .qmd), grouped,
-  over a hillshade of DEM, with the release layer and, for rock fall, the trajectories; only
-  the intensity, the trajectories, the release and the hillshade are switched on.
+  over a hillshade of DEM in the layers' CRS, with the release layer (a raster release as a
+  transparent-zero overlay), for rock fall the trajectories (switched off), and for a mud flow
+  with snapshots the particles, animated by the temporal controller; the intensity, the
+  release, the particles and the hillshade are switched on.
 - quicklook/<layer>.png for the main layers: the layer over the hillshade, zoomed to the cells
   the process reached, with its legend, a scale bar and its title, drawn by QGIS's own layout
   renderer.
@@ -28,11 +30,13 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"  # no .aux.xml beside the layers QGIS reads
 
 from osgeo import gdal  # noqa: E402
-from qgis.core import (QgsApplication, QgsBilinearRasterResampler, QgsLayerTree, QgsLayoutExporter,  # noqa: E402
+from qgis.core import (QgsApplication, QgsBilinearRasterResampler, QgsColorRampShader,  # noqa: E402
+                       QgsDateTimeRange, QgsLayerTree, QgsLayoutExporter,
                        QgsLayoutItemLabel, QgsLayoutItemLegend, QgsLayoutItemMap, QgsLayoutItemScaleBar,
                        QgsLayoutPoint, QgsLayoutSize, QgsMapLayerLegendUtils, QgsPrintLayout, QgsProject,
-                       QgsLegendRenderer, QgsLegendStyle, QgsRasterLayer, QgsRectangle,
-                       QgsUnitTypes, QgsVectorLayer)
+                       QgsLegendRenderer, QgsLegendStyle, QgsRasterLayer, QgsRasterShader, QgsRasterTransparency,
+                       QgsRectangle, QgsSingleBandPseudoColorRenderer, QgsUnitTypes, QgsVectorLayer,
+                       QgsVectorLayerTemporalProperties)
 from qgis.PyQt.QtGui import QColor, QFont  # noqa: E402
 
 # The layers of each process by group, in the layer panel's order (top first); the first group's
@@ -67,14 +71,27 @@ def band_heading(path):
     return dataset.GetRasterBand(1).GetDescription()
 
 
-def hillshade(dem_path, path):
-    """GDAL's multidirectional hillshade of the DEM (Byte, as gdaldem writes it) at `path`, drawn
-    grey with bilinear smoothing. QGIS's own hillshade renderer shades the cells it is given, so
-    zoomed in it draws every cell edge as a line."""
+def layers_crs_wkt(paths):
+    """The CRS (WKT) of the first of the run's layers at `paths` that has one: the run's CRS,
+    also where `--crs` gave it to a DEM without one."""
+    for path in paths:
+        if os.path.exists(path):
+            wkt = gdal.Open(path).GetProjection()
+            if wkt:
+                return wkt
+    return ""
+
+
+def hillshade(dem_path, path, crs_wkt):
+    """GDAL's multidirectional hillshade of the DEM (Byte, as gdaldem writes it) at `path`, in
+    the run's CRS, drawn grey with bilinear smoothing. QGIS's own hillshade renderer shades the
+    cells it is given, so zoomed in it draws every cell edge as a line."""
     shaded = gdal.DEMProcessing(path, dem_path, "hillshade", format="GTiff", multiDirectional=True,
                                 creationOptions=["COMPRESS=DEFLATE", "TILED=YES"])
     if shaded is None:
         raise RuntimeError(f"{dem_path}: GDAL could not shade the DEM")
+    if crs_wkt:
+        shaded.SetProjection(crs_wkt)  # the DEM's own, or the one --crs gave it
     shaded = None  # closes the file
     layer = QgsRasterLayer(path, "Hillshade", "gdal")
     if not layer.isValid():
@@ -84,19 +101,71 @@ def hillshade(dem_path, path):
     return layer
 
 
-def release_layer(path):
-    """The release as QGIS opens it: a vector layer, else a raster."""
+RELEASE_COLOUR = "#000000"
+
+
+def release_layer(path, crs):
+    """The release as QGIS opens it, in the run's CRS where the file has none: a vector layer
+    (polygons as black outlines, points and lines black), else a raster drawn as a
+    transparent-zero overlay (released cells black at 35 % opacity, 0 and nodata clear), so it
+    never hides the map under it."""
     layer = QgsVectorLayer(path, "Release", "ogr")
     if layer.isValid():
         symbol = layer.renderer().symbol() if hasattr(layer.renderer(), "symbol") else None
         if symbol is not None:
-            symbol.setColor(QColor(0, 0, 0, 0) if layer.geometryType() == 2 else QColor("#000000"))
+            symbol.setColor(QColor(0, 0, 0, 0) if layer.geometryType() == 2 else QColor(RELEASE_COLOUR))
             if layer.geometryType() == 2:
-                symbol.symbolLayer(0).setStrokeColor(QColor("#000000"))
+                symbol.symbolLayer(0).setStrokeColor(QColor(RELEASE_COLOUR))
                 symbol.symbolLayer(0).setStrokeWidth(0.5)
-        return layer
-    layer = QgsRasterLayer(path, "Release", "gdal")
-    return layer if layer.isValid() else None
+    else:
+        layer = QgsRasterLayer(path, "Release", "gdal")
+        if not layer.isValid():
+            return None
+        shader = QgsColorRampShader()
+        shader.setColorRampType(QgsColorRampShader.Discrete)  # a value takes the first item >= it
+        shader.setColorRampItemList([QgsColorRampShader.ColorRampItem(0.0, QColor(0, 0, 0, 0), "not released"),
+                                     QgsColorRampShader.ColorRampItem(float("inf"), QColor(RELEASE_COLOUR),
+                                                                      "released")])
+        raster_shader = QgsRasterShader()
+        raster_shader.setRasterShaderFunction(shader)
+        renderer = QgsSingleBandPseudoColorRenderer(layer.dataProvider(), 1, raster_shader)
+        transparent_zero = QgsRasterTransparency.TransparentSingleValuePixel()
+        transparent_zero.min, transparent_zero.max, transparent_zero.percentTransparent = 0.0, 0.0, 100.0
+        transparency = QgsRasterTransparency()
+        transparency.setTransparentSingleValuePixelList([transparent_zero])
+        renderer.setRasterTransparency(transparency)
+        renderer.setOpacity(0.35)
+        layer.setRenderer(renderer)
+    if not layer.crs().isValid() and crs.isValid():
+        layer.setCrs(crs)
+    return layer
+
+
+def particles_layer(path):
+    """particles.gpkg with the style it carries, animated by QGIS's temporal controller: each
+    particle is shown from its start_time to its end_time (docs/layers.md, "particles.gpkg")."""
+    layer = QgsVectorLayer(path + "|layername=particles", "Particles (snapshots)", "ogr")
+    if not layer.isValid():
+        return None
+    temporal = layer.temporalProperties()
+    temporal.setMode(QgsVectorLayerTemporalProperties.ModeFeatureDateTimeStartAndEndFromFields)
+    temporal.setStartField("start_time")
+    temporal.setEndField("end_time")
+    temporal.setIsActive(True)
+    return layer
+
+
+def animate(project, layer):
+    """The project's time range: that of the particles, one frame per snapshot interval."""
+    start_field, end_field = layer.fields().indexOf("start_time"), layer.fields().indexOf("end_time")
+    first, last = layer.minimumValue(start_field), layer.maximumValue(end_field)
+    if first is None or last is None:
+        return
+    project.timeSettings().setTemporalRange(QgsDateTimeRange(first, last))
+    times = sorted({feature["time_s"] for feature in layer.getFeatures()})
+    if len(times) > 1:
+        project.timeSettings().setTimeStep(times[1] - times[0])
+        project.timeSettings().setTimeStepUnit(QgsUnitTypes.TemporalSeconds)
 
 
 def reached_extent(path, margin_cells=10):
@@ -222,7 +291,9 @@ def build_study(out, dem_path):
         study = json.load(file)
     project = QgsProject.instance()
     temporary_hillshade = os.path.join(out, ".hillshade.part.tif")
-    base = hillshade(dem_path, temporary_hillshade)
+    crs_wkt = layers_crs_wkt([os.path.join(out, "hazard", "hazard.tif")] +
+                             [os.path.join(out, s["folder"], "intensity.tif") for s in study["scenarios"]])
+    base = hillshade(dem_path, temporary_hillshade, crs_wkt)
     project.setCrs(base.crs())
     root = project.layerTreeRoot()
     layers = {}
@@ -269,7 +340,8 @@ def build_study(out, dem_path):
 def build(out, process, dem_path, release_path):
     project = QgsProject.instance()
     temporary_hillshade = os.path.join(out, ".hillshade.part.tif")
-    base = hillshade(dem_path, temporary_hillshade)
+    crs_wkt = layers_crs_wkt([os.path.join(out, name + ".tif") for _, names in GROUPS[process] for name in names])
+    base = hillshade(dem_path, temporary_hillshade, crs_wkt)
     project.setCrs(base.crs())
     root = project.layerTreeRoot()
     group = root.addGroup(PROCESS_WORDS[process])
@@ -281,23 +353,29 @@ def build(out, process, dem_path, release_path):
             if os.path.exists(path):
                 add_raster(project, sub, path, name, group_name == "Intensity", layers)
         sub.setExpanded(group_name == "Intensity")
-    vectors = []
+    vectors = []  # top first, with whether each is switched on
+    if release_path:
+        release = release_layer(release_path, base.crs())
+        if release is not None:
+            vectors.append((release, True))
     trajectories = os.path.join(out, "trajectories.gpkg")
     if os.path.exists(trajectories):
         lines = QgsVectorLayer(trajectories + "|layername=trajectories", "Trajectories (sample)", "ogr")
         if lines.isValid():
-            vectors.append(lines)
-    if release_path:
-        release = release_layer(release_path)
-        if release is not None:
-            vectors.append(release)
-    for layer in reversed(vectors):
+            vectors.append((lines, False))
+    particles = os.path.join(out, "particles.gpkg")
+    if os.path.exists(particles):
+        points = particles_layer(particles)
+        if points is not None:
+            vectors.append((points, True))
+            animate(project, points)
+    for layer, visible in reversed(vectors):
         project.addMapLayer(layer, False)
-        root.insertLayer(0, layer)
+        root.insertLayer(0, layer).setItemVisibilityChecked(visible)
     project.addMapLayer(base, False)
     root.addLayer(base)
 
-    release = [v for v in vectors if v.name() == "Release"]
+    release = [v for v, _ in vectors if v.name() == "Release"]
     quicklooks = [(name, layers[name], release + [base]) for name in QUICKLOOKS[process] if name in layers]
     finish(project, out, base, temporary_hillshade, quicklooks)
 

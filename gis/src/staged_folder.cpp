@@ -16,6 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "talus/core/errors.hpp"
+#include "talus/gis/folder_manifest.hpp"
+#include "talus/gis/replaceable_output.hpp"
 
 namespace talus::gis {
 namespace {
@@ -23,12 +25,38 @@ namespace {
 // ".NAME.talus-": the start of every staging folder of --out NAME.
 std::string staging_prefix(const std::filesystem::path& out) { return "." + out.filename().string() + ".talus-"; }
 
-// A folder is a Talus set when its run.json says so ("software": "talus").
+// A folder is a Talus set when its run.json or its manifest says so ("software": "talus").
 bool is_talus_set(const std::filesystem::path& folder) {
-  std::ifstream in(folder / "run.json");
-  if (!in) return false;
-  const nlohmann::json record = nlohmann::json::parse(in, nullptr, false);
-  return record.is_object() && record.value("software", "") == "talus";
+  for (const char* name : {"run.json", kFolderManifestName}) {
+    std::ifstream in(folder / name);
+    if (!in) continue;
+    const nlohmann::json record = nlohmann::json::parse(in, nullptr, false);
+    if (record.is_object() && record.value("software", "") == "talus") return true;
+  }
+  return false;
+}
+
+// Moves what the old set holds beside Talus's unchanged files (the user's notes, a PDF, a
+// project edited during the run) into the new set. One whose name the new set uses too is kept
+// as NAME.kept (NAME.kept-2, ...). In a set without a manifest (written by a Talus that kept
+// none) every file counts as Talus's.
+void keep_users_files(const std::filesystem::path& old_set, const std::filesystem::path& new_set) {
+  FolderSurvey survey = survey_folder(old_set);
+  survey.foreign.insert(survey.foreign.end(), survey.changed.begin(), survey.changed.end());
+  for (const std::filesystem::path& relative : survey.foreign) {
+    std::filesystem::path target = new_set / relative;
+    for (int copy = 1; std::filesystem::exists(std::filesystem::symlink_status(target)); ++copy) {
+      target = new_set / relative;
+      target += copy == 1 ? ".kept" : ".kept-" + std::to_string(copy);
+    }
+    std::error_code error;
+    std::filesystem::create_directories(target.parent_path(), error);
+    std::filesystem::rename(old_set / relative, target, error);
+    if (error) {
+      throw std::runtime_error("cannot keep " + relative.string() + " of the earlier set: it stays in " +
+                               old_set.string() + " (" + error.message() + ")");
+    }
+  }
 }
 
 // Staging folders of runs whose process is gone (killed), named .NAME.talus-PID-XXXXXX.
@@ -40,6 +68,17 @@ void remove_abandoned_staging(const std::filesystem::path& out) {
     if (name.rfind(prefix, 0) != 0) continue;
     const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
     if (pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)) continue;  // still running
+    // An earlier set a run was killed in the middle of committing over may hold the user's files:
+    // they move into --out first, or the folder stays.
+    try {
+      const FolderSurvey survey = survey_folder(entry.path());
+      if (!survey.foreign.empty() || !survey.changed.empty()) {
+        if (!std::filesystem::is_directory(out)) continue;
+        keep_users_files(entry.path(), out);
+      }
+    } catch (const std::exception&) {
+      continue;
+    }
     std::error_code ignored;
     std::filesystem::remove_all(entry.path(), ignored);
   }
@@ -62,6 +101,16 @@ StagedFolder::StagedFolder(const std::filesystem::path& out) {
       throw InputError(shown + " (--out): holds files that are not a Talus layer set (no run.json of Talus); "
                                "a run replaces its folder whole, so give a new or empty folder");
     }
+    check_replaceable_folder(out_, shown + " (--out)");
+    FolderSurvey survey;
+    try {
+      survey = survey_folder(out_);
+    } catch (const std::exception& e) {
+      throw InputError(shown + " (--out): cannot read what it holds: " + e.what());
+    }
+    if (!survey.changed.empty()) {
+      throw InputError(shown + " (--out): " + changed_since_written(survey.changed));
+    }
   }
   for (auto folder = out_.parent_path(); !std::filesystem::exists(folder, error) && folder != folder.root_path();
        folder = folder.parent_path()) {
@@ -79,6 +128,7 @@ StagedFolder::StagedFolder(const std::filesystem::path& out) {
     throw InputError(shown + " (--out): cannot write into " + out_.parent_path().string() + ": " + std::strerror(errno));
   }
   staging_ = pattern;
+  std::filesystem::permissions(staging_, plain_folder_permissions(), error);  // mkdtemp's are 0700
 }
 
 StagedFolder::~StagedFolder() {
@@ -94,6 +144,7 @@ void StagedFolder::remove_created_parents() const {
 }
 
 void StagedFolder::commit() {
+  write_folder_manifest(staging_);
   std::error_code error;
   if (!std::filesystem::exists(out_, error)) {
     std::filesystem::rename(staging_, out_, error);
@@ -112,8 +163,9 @@ void StagedFolder::commit() {
     staging_ = aside;
   }
   committed_ = true;
+  keep_users_files(staging_, out_);  // the old set now lies under the staging name
   std::error_code ignored;
-  std::filesystem::remove_all(staging_, ignored);  // the old set, now under the staging name
+  std::filesystem::remove_all(staging_, ignored);
 }
 
 }  // namespace talus::gis

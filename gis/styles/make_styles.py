@@ -12,7 +12,8 @@ to print as a black box); nodata is transparent too. The layer is drawn at OPACI
 or map under it stays readable. The classes and their sources are in CLASSES below
 (docs/layers.md explains them).
 trajectories.qml styles the lines of trajectories.gpkg: a graduated renderer on max_energy_kj
-with the energy classes of energy_max, the strongest drawn on top, and field aliases with units.
+with the energy classes of energy_max in blues of their own, the strongest drawn on top, and
+field aliases with units.
 The QML text is the format QGIS 3.22 itself writes with saveNamedStyle, with attributes in a
 fixed order.
 """
@@ -213,7 +214,10 @@ TRAJECTORY_FIELDS = [("fid", ""), ("run_id", "Run"), ("source_id", "Release sour
                      ("release_fid", "Release feature (FID of the release layer)"),
                      ("stop_reason", "Stop reason"), ("max_energy_kj", "Maximum kinetic energy (kJ)"),
                      ("runout_length_m", "Runout length (m)")]
-TRAJECTORY_LINE_WIDTH_MM = "0.5"
+TRAJECTORY_LINE_WIDTH_MM = "0.3"
+# Blues (ColorBrewer), light to dark by energy: the lines' own scheme, so that drawn over the
+# intensity or energy layers they are not read as one of their classes.
+TRAJECTORY_COLOURS = ["#c6dbef", "#9ecae1", "#6baed6", "#3182bd", "#08519c", "#08306b"]
 
 
 def option_map(props, indent):
@@ -268,7 +272,7 @@ def trajectory_style():
     ranges = "\n".join(f'      <range symbol="{i}" label={quoteattr(label)} lower="{bound(low)}" '
                        f'upper="{bound(high)}" render="true"/>'
                        for i, (low, high, label) in enumerate(zip(lows, highs, names)))
-    symbols = "\n".join(line_symbol(i, c) for i, c in enumerate(ENERGY_COLOURS))
+    symbols = "\n".join(line_symbol(i, c) for i, c in enumerate(TRAJECTORY_COLOURS))
     field_configuration = per_field('    <field name="{field}" configurationFlags="None">\n'
                                     '      <editWidget type="">\n        <config>\n          <Option/>\n'
                                     "        </config>\n      </editWidget>\n    </field>")

@@ -18,6 +18,7 @@
 #include "whole_number.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/materials_file.hpp"
+#include "talus/gis/replaceable_output.hpp"
 #include "talus/gis/run_record.hpp"
 #include "talus/rockfall/calibration.hpp"
 
@@ -164,6 +165,10 @@ void check_options(const CalibrateOptions& o) {
   if (fs::is_directory(o.out)) throw InputError("--out " + o.out.string() + ": is a folder");
   const fs::path folder = o.out.parent_path().empty() ? fs::path(".") : o.out.parent_path();
   if (!fs::is_directory(folder)) throw InputError("--out " + o.out.string() + ": folder " + folder.string() + " does not exist");
+  fs::path report = o.out;
+  report.replace_extension(".json");
+  gis::check_replaceable_file(o.out, "--out " + o.out.string());
+  gis::check_replaceable_file(report, "--out " + o.out.string() + " (its report " + report.string() + ")");
   if (!(o.block_size > 0.01 && o.block_size < 100.0)) {
     throw InputError("--block-size " + number(o.block_size) + ": the diameter must lie between 0.01 and 100 m");
   }

@@ -23,6 +23,8 @@
 #include "talus/core/byte_stream.hpp"
 #include "talus/core/errors.hpp"
 #include "talus/gis/build_commit.hpp"
+#include "talus/gis/folder_manifest.hpp"
+#include "talus/gis/replaceable_output.hpp"
 #include "talus/gis/scene.hpp"
 
 namespace talus::cli {
@@ -263,22 +265,37 @@ nlohmann::ordered_json study_record(const Study& study, const StudyChoices& choi
   return record;
 }
 
-// OUT may be new, empty, or a study's earlier output (with a staging folder a killed run left);
-// anything else is not ours to write into.
+// OUT may be new, empty, or a study's earlier output (with a staging folder a killed run left).
+// A complete study's manifest (.talus-files.json) tells its files from the user's, which stay;
+// without one, any name a study does not write is not ours to write beside. Files of the study
+// changed since it wrote them, or a folder that cannot be written, are refused before any work.
 void check_study_folder(const std::filesystem::path& out) {
   std::error_code ec;
   if (!std::filesystem::exists(out, ec)) return;
-  if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string() + ": --out is a file, not a folder");
+  const std::string shown = out.string() + " (--out)";
+  if (!std::filesystem::is_directory(out, ec)) throw InputError(shown + ": is a file, not a folder");
+  gis::check_replaceable_folder(out, shown);
+  gis::FolderSurvey survey;
+  try {
+    survey = gis::survey_folder(out);
+  } catch (const std::exception& e) {
+    throw InputError(shown + ": cannot read what it holds: " + e.what());
+  }
+  if (!survey.changed.empty()) throw InputError(shown + ": " + gis::changed_since_written(survey.changed));
+  if (survey.recorded) return;
+  std::vector<std::filesystem::path> foreign;
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
     const std::string name = entry.path().filename().string();
     // What a study writes, and the hidden files and staging folders it writes them through.
     const bool ours = name == "scenarios" || name == "hazard" || name == "region" || name == "sources" || name == "study.json" ||
                       name == "report.md" || name == "project.qgz" || name == "hillshade.tif" ||
                       name == "quicklook" || name.front() == '.';
-    if (!ours) {
-      throw InputError(out.string() + ": --out holds files that are not a Talus study (" + name +
-                       "); give a new or empty folder");
-    }
+    if (!ours) foreign.push_back(name);
+  }
+  if (!foreign.empty()) {
+    std::sort(foreign.begin(), foreign.end());
+    throw InputError(shown + ": holds files that are not a Talus study (" + gis::list_of_names(foreign) +
+                     "); give a new or empty folder");
   }
 }
 
@@ -292,6 +309,8 @@ struct CheckedStudy {
 CheckedStudy check_study(const Study& study, const StudyChoices& choices, const JobOutput& output,
                          const ProcessRanks& ranks) {
   check_study_folder(choices.out);
+  // The manifest describes a complete study: until this one is, the folder has none.
+  if (ranks.root()) std::filesystem::remove(choices.out / gis::kFolderManifestName);
   CheckedStudy checked;
   std::vector<std::string> intensity;
   std::vector<std::optional<DetectedSources>> detected;
@@ -378,6 +397,7 @@ void study_job(const Study& study, const StudyChoices& choices, const JobOutput&
   const std::string project_line =
       write_project_if_wanted(choices.project, choices.out, choices.out, "study", study.inputs.dem, "");
   write_study_report(record, choices.out);
+  gis::write_folder_manifest(choices.out);
   if (!project_line.empty()) output.say(project_line);
   output.say("Study written to " + choices.out.string() + ": " + count + " under scenarios/, " +
              (zoning.matrix ? "the hazard map under hazard/, " : "") + "the region layers under region/, study.json, report.md");

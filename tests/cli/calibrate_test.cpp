@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -67,6 +68,25 @@ TEST(CalibrateUsage, BadOutputPathExitsTwoAndWritesNothing) {
   EXPECT_EQ(result.exit_code, 2) << result.err;
   EXPECT_TRUE(fs::is_empty(work / "folder.toml"));
   EXPECT_EQ(std::distance(fs::directory_iterator(work), fs::directory_iterator()), 1);
+}
+
+// Issue 38, item 6: a place the table cannot be written to is found before the calibration runs.
+TEST(CalibrateUsage, AnUnwritablePlaceIsRefusedBeforeAnyWork) {
+  const auto work = test::fresh_folder("calibrate_unwritable");
+  const auto result = test::run_talus({"calibrate", "--out", "/proc/talus_cal.toml"}, work);
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_EQ(result.err, "talus: error: --out /proc/talus_cal.toml: cannot be written: cannot create a file in /proc "
+                        "(No such file or directory)\n");
+  EXPECT_EQ(result.out.find("Calibrating"), std::string::npos) << result.out;
+  std::ofstream(work / "locked.toml") << "# the user's table\n";
+  if (std::system(("chattr +i '" + (work / "locked.toml").string() + "' 2>/dev/null").c_str()) != 0) {
+    GTEST_SKIP() << "chattr +i is not allowed here";
+  }
+  const auto locked = test::run_talus({"calibrate", "--out", "locked.toml"}, work);
+  EXPECT_EQ(std::system(("chattr -i '" + (work / "locked.toml").string() + "'").c_str()), 0);
+  EXPECT_EQ(locked.exit_code, 2) << locked.err;
+  EXPECT_NE(locked.err.find("--out locked.toml: cannot be written: the file is immutable"), std::string::npos) << locked.err;
+  EXPECT_EQ(locked.out.find("Calibrating"), std::string::npos) << locked.out;
 }
 
 std::vector<std::string> sample_rockfall(const fs::path& out, const std::string& mode, const std::string& runs) {

@@ -1,11 +1,13 @@
 // project.qgz, hillshade.tif and quicklook/*.png of a run (issue 17, item 8; docs/layers.md, "QGIS
 // project and quicklooks"): written by default for both processes and checked headless in QGIS;
-// `--project off` writes none; without QGIS's Python a run still succeeds with a note.
+// `--project off` writes none; without QGIS's Python a run still succeeds with a note; own data
+// with --crs line up, a raster release is an overlay, particles are animated (issue 38, item 1).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 
 #include "run_talus.hpp"
+#include "talus/gis/folder_manifest.hpp"
 #include "test_paths.hpp"
 
 namespace talus {
@@ -36,7 +38,7 @@ int check_project(const fs::path& out, const std::string& process, const std::st
 
 bool hidden_files_left(const fs::path& out) {
   for (const auto& entry : fs::directory_iterator(out))
-    if (entry.path().filename().string().front() == '.') return true;
+    if (entry.path().filename().string().front() == '.' && entry.path().filename() != gis::kFolderManifestName) return true;
   return false;
 }
 
@@ -54,10 +56,26 @@ TEST(RunProject, RockFallProjectOpensInQgisWithItsLayersAndQuicklooks) {
 TEST(RunProject, MudFlowProjectOpensInQgisWithItsLayersAndQuicklooks) {
   if (!fs::exists(kPython)) GTEST_SKIP() << kPython << " (with python3-qgis) is not installed";
   const auto root = test::fresh_folder("run_project_mudflow");
-  const auto result = test::run_talus(sample_run("mudflow", root / "out", {"--project", "on"}), root);
+  const auto result =
+      test::run_talus(sample_run("mudflow", root / "out", {"--project", "on", "--snapshots", "30"}), root);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_FALSE(hidden_files_left(root / "out"));
+  EXPECT_TRUE(fs::exists(root / "out" / "particles.gpkg"));  // and animated in the project
   EXPECT_EQ(check_project(root / "out", "mudflow", "intensity flow_depth_max velocity_max arrival_time"), 0);
+}
+
+// Issue 38, item 1: a DEM and a 0/1 release raster without a CRS, given one by --crs: the
+// project, the hillshade and the release are in it, and the release's zeros are transparent.
+TEST(RunProject, OwnDataWithCrsFromTheCommandLineLinesUp) {
+  if (!fs::exists(kPython)) GTEST_SKIP() << kPython << " (with python3-qgis) is not installed";
+  const auto root = test::fresh_folder("run_project_crs");
+  const auto norway = test::source_dir() / "data" / "norway_forest";
+  const auto result = test::run_talus({"rockfall", "--dem", (norway / "dem_5m_sn1.asc").string(), "--release",
+                                       (norway / "rel_sn1.asc").string(), "--crs", "EPSG:25833", "--runs", "1", "--project", "on",
+                                       "--out", (root / "out").string()},
+                                      root);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(check_project(root / "out", "rockfall", "intensity"), 0) << result.out;
 }
 
 TEST(RunProject, OffWritesNoneAndWithoutQgisARunSucceedsWithANote) {

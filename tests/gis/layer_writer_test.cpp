@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "talus/core/errors.hpp"
+#include "talus/gis/folder_manifest.hpp"
 #include "talus/gis/gdal_dataset.hpp"
 #include "test_paths.hpp"
 
@@ -108,7 +109,7 @@ TEST(LayerWriter, WritesAFloat32CloudOptimizedGeoTiffOnTheGridWithItsProperties)
     writer.add(grid, {"energy_max", "Maximum kinetic energy", "kJ"});
     writer.commit();
   }
-  EXPECT_EQ(names_in(folder), (std::set<std::string>{"energy_max.tif", "energy_max.qml", "energy_max.qmd"}));
+  EXPECT_EQ(names_in(folder), (std::set<std::string>{"energy_max.tif", "energy_max.qml", "energy_max.qmd", kFolderManifestName}));
   // The QGIS metadata: a title naming the process, an abstract with the unit and scenario.
   const std::string qmd = read_text(folder / "energy_max.qmd");
   EXPECT_NE(qmd.find("<title>Maximum kinetic energy (rock fall)</title>"), std::string::npos) << qmd;
@@ -300,7 +301,7 @@ TEST(LayerWriter, CommitsTheFilesOfTheSetAndDropsALayerThatFailed) {
   std::ofstream(writer.temporary_path("run.json")) << "{}";
   writer.commit();
   EXPECT_EQ(names_in(folder),
-            (std::set<std::string>{"velocity_max.tif", "velocity_max.qml", "velocity_max.qmd", "run.json"}));
+            (std::set<std::string>{"velocity_max.tif", "velocity_max.qml", "velocity_max.qmd", "run.json", kFolderManifestName}));
   EXPECT_EQ(read_text(folder / "run.json"), "{}");
 }
 

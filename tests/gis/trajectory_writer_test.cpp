@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "talus/gis/folder_manifest.hpp"
 #include "talus/gis/gdal_dataset.hpp"
 #include "test_paths.hpp"
 
@@ -276,7 +277,7 @@ TEST(TrajectoryWriter, AddsTheGeoPackageAndItsStyleToALayerSet) {
     for (const auto& name : names_in(folder)) EXPECT_EQ(name.front(), '.') << name << " is visible before commit";
     writer.commit();
   }
-  EXPECT_EQ(names_in(folder), (std::set<std::string>{"trajectories.gpkg", "trajectories.qml"}));
+  EXPECT_EQ(names_in(folder), (std::set<std::string>{"trajectories.gpkg", "trajectories.qml", kFolderManifestName}));
   const auto style = embedded_style("trajectories");
   ASSERT_TRUE(style);
   EXPECT_EQ(read_text(folder / "trajectories.qml"), *style);

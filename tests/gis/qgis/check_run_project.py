@@ -7,7 +7,8 @@ The project reads; every layer in it is valid; it holds each LAYER (a file stem)
 title, the hillshade and the release, in the process's group; the hillshade lies at the bottom;
 for PROCESS study (`talus study`), the group is Hazard, there is no release, each scenario of
 OUT_DIR/study.json has a group named after it, and each process of its "region" a group of its
-region layers, every one of them styled;
+region layers, every one of them styled; the project's CRS is every layer's; a raster release
+draws 0 transparent; the trajectories are off; particles, when written, are animated;
 quicklook/LAYER.png exists for each LAYER given and is not blank (it holds the layer's colours
 and the hillshade's greys, not one flat colour). Prints one line per problem; exit 0 when none.
 """
@@ -97,6 +98,28 @@ def main():
     for needed in ("hillshade",) if process == "study" else ("hillshade", "Release"):
         if not any(needed.lower() in (layer.name() + layer.source()).lower() for layer in layers):
             problems.append(f"no {needed} layer in the project")
+    # One CRS: the project's is the layers' (also where --crs gave it), the hillshade's and the release's.
+    if not project.crs().isValid():
+        problems.append("the project has no CRS")
+    for layer in layers:
+        if layer.crs() != project.crs():
+            problems.append(f"'{layer.name()}' is in {layer.crs().authid() or 'no CRS'}, the project in "
+                            f"{project.crs().authid() or 'none'}")
+    tree = project.layerTreeRoot()
+    for layer in layers:
+        node = tree.findLayer(layer.id())
+        if layer.name() == "Release" and layer.type() == layer.RasterLayer:
+            transparency = layer.renderer().rasterTransparency() if layer.renderer() else None
+            zero_clear = transparency is not None and transparency.alphaValue(0.0) == 0
+            if layer.renderer().type() == "singlebandgray" or not zero_clear:
+                problems.append("the raster release is drawn opaque: 0 must be transparent")
+        if layer.name().startswith("Trajectories") and node is not None and node.isVisible():
+            problems.append("the trajectories are switched on: they belong off by default")
+        if layer.name().startswith("Particles"):
+            if not layer.temporalProperties().isActive():
+                problems.append("the particles are not animated (temporal properties off)")
+            if not project.timeSettings().temporalRange().begin().isValid():
+                problems.append("the project has no time range for the temporal controller")
     bottom = project.layerTreeRoot().layerOrder()[-1] if layers else None
     if bottom is None or bottom.name() != "Hillshade":
         problems.append(f"the bottom layer is {bottom.name() if bottom else None}, not the hillshade")
