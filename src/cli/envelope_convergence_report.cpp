@@ -108,8 +108,16 @@ std::vector<std::string> convergence_lines(const RockfallResult& result, const R
 }
 
 std::vector<std::string> convergence_problems(const RockfallResult& result, const RockfallSettings& settings) {
-  if (!result.convergence || result.convergence->converged) return {};
+  if (!result.convergence) return {};
   const ConvergenceReport& c = *result.convergence;
+  if (c.converged) {
+    if (!settings.auto_runs || c.sources_at_limit == 0) return {};
+    // The whole map met the tolerance, but these sources' own envelopes did not (issue 38, item 4).
+    return {"convergence: " + share(c.sources_at_limit, c.sources, "sources") + " stopped unconverged at the limit of " +
+            std::to_string(c.run_limit) + " runs: the maps converged as a whole, but where only these sources reach, "
+            "they rest on envelopes that still changed by more than the tolerance in their last doubling (" +
+            tolerance_text(settings) + "); raise [run] max_runs to map them as surely as the others"};
+  }
   // The envelopes are nested (more runs reach a superset of cells), so the difference is the new cells.
   const std::uint64_t new_cells = c.change.reached_after - c.change.reached_before;
   std::string line = "convergence: the maps have not converged with ";

@@ -23,7 +23,9 @@ nlohmann::ordered_json convergence_record(const RockfallResult& result, const Ro
 std::vector<std::string> convergence_lines(const RockfallResult& result, const RockfallSettings& settings);
 
 // One problem line when the whole run's envelope has not converged, in the form of the other
-// problems ("convergence: ..."), with its counts and shares and the runs that would converge it.
+// problems ("convergence: ..."), with its counts and shares and the runs that would converge it;
+// with --runs auto, one line too when the whole converged but some sources stopped unconverged
+// at the run limit.
 std::vector<std::string> convergence_problems(const RockfallResult& result, const RockfallSettings& settings);
 
 }  // namespace talus::cli

@@ -38,14 +38,23 @@ nlohmann::json add_intensity_layer(gis::LayerWriter& writer, const IntensitySche
   const Grid<float> classes = classify_intensity(scheme, layers);
   const auto& geotransform = classes.spec().geotransform;
   const double cell_area_km2 = std::abs(geotransform[1] * geotransform[5]) / 1e6;
+  const auto passages = layers.find("passages");  // rock fall only
   nlohmann::json counts = nlohmann::json::array();
   for (const IntensityClass& c : scheme.classes) {
     const auto cells = std::ranges::count(classes.values(), static_cast<float>(c.value));
-    counts.push_back({{"value", c.value},
-                      {"name", c.name},
-                      {"label", c.label},
-                      {"cells", cells},
-                      {"area_km2", static_cast<double>(cells) * cell_area_km2}});
+    nlohmann::json entry = {{"value", c.value},
+                            {"name", c.name},
+                            {"label", c.label},
+                            {"cells", cells},
+                            {"area_km2", static_cast<double>(cells) * cell_area_km2}};
+    if (passages != layers.end()) {
+      std::int64_t thin = 0;
+      for (std::size_t k = 0; k < classes.values().size(); ++k) {
+        thin += classes.values()[k] == static_cast<float>(c.value) && passages->second->values()[k] < kQuantilePassages;
+      }
+      entry["cells_under_" + std::to_string(kQuantilePassages) + "_passages"] = thin;
+    }
+    counts.push_back(entry);
   }
   gis::LayerDescription layer{"intensity", "Intensity class by " + scheme.guideline, ""};
   layer.style_qml = gis::intensity_style_qml(scheme);
@@ -74,6 +83,26 @@ std::string intensity_summary(const nlohmann::json& entry) {
     first = false;
   }
   return text;
+}
+
+std::vector<std::string> intensity_problems(const nlohmann::json& entry) {
+  const std::string key = "cells_under_" + std::to_string(kQuantilePassages) + "_passages";
+  std::vector<std::string> lines;
+  for (const auto& c : entry["classes"]) {
+    if (!c.contains(key)) continue;
+    const auto cells = c["cells"].get<std::int64_t>(), thin = c[key].get<std::int64_t>();
+    if (cells == 0 || static_cast<double>(thin) <= kThinClassShare * static_cast<double>(cells)) continue;
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "intensity: %lld of the %lld %s cells (%.0f %%) were passed by fewer than %d rocks, too few for their "
+                  "95th percentile of energy: the %s area is uncertain there; more runs (--runs, [run] max_runs) "
+                  "settle it",
+                  static_cast<long long>(thin), static_cast<long long>(cells), c["name"].get<std::string>().c_str(),
+                  100.0 * static_cast<double>(thin) / static_cast<double>(cells), kQuantilePassages,
+                  c["name"].get<std::string>().c_str());
+    lines.emplace_back(line);
+  }
+  return lines;
 }
 
 }  // namespace talus::cli

@@ -30,7 +30,8 @@ std::optional<IntensityScheme> chosen_intensity(const std::string& choice, const
                                                 const HazardLayers& layers);
 
 // Classifies, adds intensity.tif to the set and returns the run.json entry: the guideline, and per
-// class its cells and area (km2).
+// class its cells and area (km2), and with a `passages` layer (rock fall) its cells passed by
+// fewer than kQuantilePassages rocks.
 nlohmann::json add_intensity_layer(gis::LayerWriter& writer, const IntensityScheme& scheme,
                                    const std::map<std::string, const Grid<float>*>& layers);
 
@@ -41,5 +42,16 @@ nlohmann::json write_layers_with_intensity(gis::LayerWriter& writer, const Hazar
 
 // "Intensity (foen-2016): strong 12 cells (0.000 km2), ...", for the terminal.
 std::string intensity_summary(const nlohmann::json& entry);
+
+// Passages a cell needs for its 95th percentile of energy to lie inside its sample rather than
+// at its largest value: 1 / (1 - 0.95) (docs/hazard-statistics.md, "Convergence").
+inline constexpr int kQuantilePassages = 20;
+
+// Share of a class's cells under kQuantilePassages above which its area is a problem line.
+inline constexpr double kThinClassShare = 0.10;
+
+// One problem line per intensity class (rock fall) more than kThinClassShare of whose cells
+// were passed by fewer than kQuantilePassages rocks ("intensity: ...").
+std::vector<std::string> intensity_problems(const nlohmann::json& entry);
 
 }  // namespace talus::cli

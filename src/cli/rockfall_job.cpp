@@ -285,6 +285,8 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   problems.insert(problems.end(), trajectory_problems.begin(), trajectory_problems.end());
   const std::vector<std::string> unconverged = convergence_problems(result, o.settings);
   problems.insert(problems.end(), unconverged.begin(), unconverged.end());
+  const std::vector<std::string> thin_classes = intensity ? intensity_problems(intensity_entry) : std::vector<std::string>{};
+  problems.insert(problems.end(), thin_classes.begin(), thin_classes.end());
   record.set("notes", notes);
   record.set("problems", problems);
   record.add_timing("read_inputs", read_seconds);
@@ -313,6 +315,7 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   for (const auto& problem : trajectory_problems) output.say("problem: " + problem);
   for (const auto& problem : unconverged) output.say("problem: " + problem);
   if (intensity) output.say(intensity_summary(intensity_entry));
+  for (const auto& problem : thin_classes) output.say("problem: " + problem);
   output.say("Layers written to " + o.out.string() + " (open the .tif files in QGIS: each has its style beside it)");
   if (!project_line.empty()) output.say(project_line);
 }

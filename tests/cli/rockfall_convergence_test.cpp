@@ -178,6 +178,55 @@ TEST(FixedRuns, TooFewAreAProblemThatNamesTheRunsNeeded) {
   fs::remove_all(folder);
 }
 
+// Issue 38, item 4: each intensity class counts its cells passed by fewer than 20 rocks (too few
+// for a 95th percentile), as the layers show them, and a class with more than 10 % such cells is
+// a problem line.
+TEST(FixedRuns, IntensityCellsTooThinForTheirPercentileAreCountedAndAProblem) {
+  const auto folder = fresh_scene("rockfall_thin_classes", 5, 34);
+  const RockfallRun run = run_scene(folder, "out", {"--runs", "4", "--threads", "2"}, "");
+  ASSERT_EQ(run.result.exit_code, 0) << run.result.err;
+  const auto intensity = test::read_band(folder / "out" / "intensity.tif");
+  const auto passages = test::read_band(folder / "out" / "passages.tif");
+  ASSERT_EQ(intensity.size(), passages.size());
+  int problem_lines = 0;
+  for (const auto& c : run.record["intensity"]["classes"]) {
+    std::int64_t cells = 0, thin = 0;
+    for (std::size_t k = 0; k < intensity.size(); ++k) {
+      if (intensity[k] != c["value"].get<float>()) continue;
+      ++cells;
+      thin += passages[k] < 20.0f;
+    }
+    EXPECT_EQ(c["cells"], cells) << c.dump();
+    EXPECT_EQ(c["cells_under_20_passages"], thin) << c.dump();
+    if (cells > 0 && thin > cells / 10) {
+      ++problem_lines;
+      EXPECT_TRUE(has_problem(run, "intensity: " + std::to_string(thin) + " of the " + std::to_string(cells) + " " +
+                                       c["name"].get<std::string>() + " cells ("))
+          << run.record["problems"].dump();
+    }
+  }
+  EXPECT_GT(problem_lines, 0) << "four runs per source leave thin classes";
+  EXPECT_NE(run.result.out.find("problem: intensity: "), std::string::npos) << run.result.out;
+  fs::remove_all(folder);
+}
+
+// Issue 38, item 4: with --runs auto, sources that stop unconverged at the run limit are a
+// problem line even where the maps converged as a whole.
+TEST(AutoRunsOneSource, SourcesStoppedAtTheLimitAreAProblemWhenTheWholeConverged) {
+  const auto folder = fresh_scene("rockfall_auto_at_limit", 5, 34);
+  const RockfallRun run =
+      run_scene(folder, "out", {"--runs", "auto"}, "[run]\nmin_runs = 4\nmax_runs = 8\nconvergence_tolerance = 0.3\n");
+  ASSERT_EQ(run.result.exit_code, 0) << run.result.err;
+  const nlohmann::json& c = run.record["convergence"];
+  ASSERT_TRUE(c["converged"].get<bool>()) << c.dump();
+  ASSERT_GT(c["sources_at_limit"].get<int>(), 0) << c.dump();
+  EXPECT_TRUE(has_problem(run, "convergence: " + std::to_string(c["sources_at_limit"].get<int>()) +
+                                   " of 30 sources (")) << run.record["problems"].dump();
+  EXPECT_NE(run.result.out.find("stopped unconverged at the limit of 8 runs: the maps converged as a whole"),
+            std::string::npos) << run.result.out;
+  fs::remove_all(folder);
+}
+
 TEST(FixedRuns, OneRunPerSourceIsNotTested) {
   const auto folder = fresh_scene("rockfall_only_run_untested", 5, 34);
   const RockfallRun run = run_scene(folder, "out", {"--runs", "auto", "--only-run", "3"}, "");
