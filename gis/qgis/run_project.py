@@ -31,8 +31,9 @@ os.environ["GDAL_PAM_ENABLED"] = "NO"  # no .aux.xml beside the layers QGIS read
 
 from osgeo import gdal  # noqa: E402
 from qgis.core import (QgsApplication, QgsBilinearRasterResampler, QgsColorRampShader,  # noqa: E402
-                       QgsDateTimeRange, QgsLayerTree, QgsLayoutExporter,
-                       QgsLayoutItemLabel, QgsLayoutItemLegend, QgsLayoutItemMap, QgsLayoutItemScaleBar,
+                       QgsDateTimeRange, QgsLayoutExporter,
+                       QgsLayoutItemLabel, QgsLayoutItemLegend, QgsLayoutItemMap, QgsLayoutItemPicture,
+                       QgsLayoutItemScaleBar,
                        QgsLayoutPoint, QgsLayoutSize, QgsMapLayerLegendUtils, QgsPrintLayout, QgsProject,
                        QgsLegendRenderer, QgsLegendStyle, QgsRasterLayer, QgsRasterShader, QgsRasterTransparency,
                        QgsRectangle, QgsSingleBandPseudoColorRenderer, QgsUnitTypes, QgsVectorLayer,
@@ -193,10 +194,69 @@ def with_aspect(extent, aspect):
                         centre.y() + height / 2)
 
 
-def quicklook(project, layer, heading, base_layers, extent, path):
-    """One A4 page: the layer over the base layers, legend, scale bar and title, as PNG."""
+CREDIT_KEYS = ("SOURCE", "COPYRIGHT", "TIFFTAG_COPYRIGHT", "ATTRIBUTION", "CREDIT", "LICENSE")
+NORTH_ARROW = "arrows/NorthArrow_02.svg"  # one of QGIS's own SVG symbols
+
+
+def credits_of(inputs):
+    """The data credits the inputs carry in their metadata (SOURCE, COPYRIGHT, ...), each once,
+    in the order of the inputs; the sample scene's DEM carries its licence's credit this way."""
+    found = []
+    for entry in inputs.values():
+        path = entry.get("path", "") if isinstance(entry, dict) else ""
+        dataset = gdal.OpenEx(path) if path and os.path.exists(path) else None
+        if dataset is None:
+            continue
+        metadata = dataset.GetMetadata() or {}
+        for key in CREDIT_KEYS:
+            text = metadata.get(key, "").strip()
+            if text and text not in found:
+                found.append(text)
+    return found
+
+
+def page_facts(out, process, crs):
+    """The lines every page of a run carries: what made it (software, version, commit, date),
+    what it shows (process, scenario, mode), the CRS, and the data credits of its inputs, read
+    from run.json (or study.json) in OUT."""
+    record_path = os.path.join(out, "study.json" if process == "study" else "run.json")
+    record = {}
+    if os.path.exists(record_path):
+        with open(record_path, encoding="utf-8") as file:
+            record = json.load(file)
+    version = record.get("version", "")
+    commit = record.get("git_commit", "")[:7]
+    when = (record.get("finished_utc") or record.get("started_utc") or "")[:16].replace("T", " ")
+    made = f"Talus {version}" + (f" ({commit})" if commit else "") + (f", run {when} UTC" if when else "")
+    inputs = record.get("inputs", {})
+    scenario = inputs.get("scenario", {}).get("path", "") if isinstance(inputs.get("scenario"), dict) else ""
+    shown = {"rockfall": "Rock fall", "mudflow": "Mud flow", "study": "Study"}[process]
+    mode = record.get("parameters", {}).get("run", {}).get("mode", "") if process == "rockfall" else ""
+    what = shown + (f", {mode} mode" if mode else "") + \
+        (f", scenario {os.path.basename(scenario)}" if scenario else ", default parameters")
+    crs_text = f"CRS: {crs.description()} ({crs.authid()})" if crs.isValid() else "CRS: none"
+    credits = credits_of(inputs) if inputs else []
+    return [f"{what}. {crs_text}. {made}.", "Data: " + "; ".join(credits) if credits else ""]
+
+
+def add_label(layout, text, size, x, y, width, height):
+    label = QgsLayoutItemLabel(layout)
+    label.setText(text)
+    label.setFont(QFont("DejaVu Sans", size))
+    label.attemptMove(QgsLayoutPoint(x, y, QgsUnitTypes.LayoutMillimeters))
+    label.attemptResize(QgsLayoutSize(width, height, QgsUnitTypes.LayoutMillimeters))
+    layout.addLayoutItem(label)
+    return label
+
+
+def page(project, title, legend_layers, map_layers, extent, facts):
+    """One A4 landscape page: the map of `map_layers` (top first) framed, its title, a legend of
+    `legend_layers` only (one heading each: a raster's band description with its unit, a
+    vector's name), a scale bar, a north arrow, and the facts at the foot. Returns the layout and
+    the legend's tree, which must outlive any export."""
     layout = QgsPrintLayout(project)
     layout.initializeDefaults()
+    layout.setName(title)
     layout.pageCollection().page(0).setPageSize(QgsLayoutSize(*PAGE_MM, QgsUnitTypes.LayoutMillimeters))
     x, y, width, height = MAP_MM
     map_item = QgsLayoutItemMap(layout)
@@ -204,29 +264,36 @@ def quicklook(project, layer, heading, base_layers, extent, path):
     map_item.attemptResize(QgsLayoutSize(width, height, QgsUnitTypes.LayoutMillimeters))
     map_item.setFrameEnabled(True)
     layout.addLayoutItem(map_item)
-    map_item.setCrs(layer.crs())
-    map_item.setLayers([layer] + base_layers)
+    map_item.setCrs(map_layers[0].crs())
+    map_item.setLayers(map_layers)
     map_item.setExtent(with_aspect(extent, width / height))  # the item's own shape: no resize
 
-    label = QgsLayoutItemLabel(layout)
-    label.setText(layer.name())
-    label.setFont(QFont("DejaVu Sans", 16))
-    label.attemptMove(QgsLayoutPoint(x, 8, QgsUnitTypes.LayoutMillimeters))
-    label.attemptResize(QgsLayoutSize(PAGE_MM[0] - 20, 12, QgsUnitTypes.LayoutMillimeters))
-    layout.addLayoutItem(label)
+    add_label(layout, title, 16, x, 8, PAGE_MM[0] - 20, 12)
 
     legend = QgsLayoutItemLegend(layout)
     legend.setLinkedMap(map_item)
-    legend.setAutoUpdateModel(False)
-    root = QgsLayerTree()
-    node = root.addLayer(layer)
-    QgsMapLayerLegendUtils.setLegendNodeUserLabel(node, 0, heading)
-    QgsLegendRenderer.setNodeLegendStyle(node, QgsLegendStyle.Hidden)  # the title names the layer
-    legend.model().setRootGroup(root)
-    legend.model().refreshLayerLegend(node)
+    legend.setAutoUpdateModel(False)  # the legend keeps a tree of its own, saved with the layout
+    root = legend.model().rootGroup()
+    root.removeAllChildren()
+    for layer in legend_layers:
+        node = root.addLayer(layer)
+        if layer.type() == layer.RasterLayer:
+            QgsMapLayerLegendUtils.setLegendNodeUserLabel(node, 0, band_heading(layer.source()))
+            QgsLegendRenderer.setNodeLegendStyle(node, QgsLegendStyle.Hidden)  # the band heading names it
+    for node in root.findLayers():
+        legend.model().refreshLayerLegend(node)
     legend.setTitle("")
     legend.attemptMove(QgsLayoutPoint(x + width + 8, y, QgsUnitTypes.LayoutMillimeters))
     layout.addLayoutItem(legend)
+
+    arrow = QgsLayoutItemPicture(layout)
+    arrow.setPicturePath(next((os.path.join(folder, NORTH_ARROW) for folder in QgsApplication.svgPaths()
+                               if os.path.exists(os.path.join(folder, NORTH_ARROW))), NORTH_ARROW))
+    arrow.setLinkedMap(map_item)
+    arrow.setNorthMode(QgsLayoutItemPicture.GridNorth)
+    arrow.attemptMove(QgsLayoutPoint(x + width + 8, y + height - 42, QgsUnitTypes.LayoutMillimeters))
+    arrow.attemptResize(QgsLayoutSize(12, 20, QgsUnitTypes.LayoutMillimeters))
+    layout.addLayoutItem(arrow)
 
     scale = QgsLayoutItemScaleBar(layout)
     scale.setStyle("Single Box")
@@ -237,6 +304,15 @@ def quicklook(project, layer, heading, base_layers, extent, path):
     scale.attemptMove(QgsLayoutPoint(x + width + 8, y + height - 15, QgsUnitTypes.LayoutMillimeters))
     layout.addLayoutItem(scale)
 
+    foot = "\n".join(line for line in facts if line)
+    add_label(layout, foot, 8, x, y + height + 2, PAGE_MM[0] - 20, PAGE_MM[1] - y - height - 4)
+    return layout, root
+
+
+def quicklook(project, layer, base_layers, extent, facts, path):
+    """One page of a layer over the base layers, as PNG."""
+    layout, root = page(project, layer.name(), [layer] + [b for b in base_layers if b.name() == "Release"],
+                        [layer] + base_layers, extent, facts)
     settings = QgsLayoutExporter.ImageExportSettings()
     settings.dpi = QUICKLOOK_DPI
     settings.exportMetadata = False  # GDAL cannot add it to a PNG
@@ -247,6 +323,19 @@ def quicklook(project, layer, heading, base_layers, extent, path):
     if result != QgsLayoutExporter.Success:
         raise RuntimeError(f"{path}: the layout could not be exported (QGIS code {result})")
     return root  # the legend's tree must outlive the export
+
+
+def report_layout(project, layer, base_layers, extent, facts, path):
+    """The report page, "Report": the main layer over the base layers, saved in the project's
+    layouts (Project > Layouts) for the user to edit, and exported as PDF at `path`."""
+    layout, root = page(project, layer.name(), [layer] + [b for b in base_layers if b.name() == "Release"],
+                        [layer] + base_layers, extent, facts)
+    layout.setName("Report")
+    project.layoutManager().addLayout(layout)
+    result = QgsLayoutExporter(layout).exportToPdf(path, QgsLayoutExporter.PdfExportSettings())
+    if result != QgsLayoutExporter.Success:
+        raise RuntimeError(f"{path}: the report page could not be exported (QGIS code {result})")
+    return root
 
 
 def add_raster(project, group, path, name, visible, layers):
@@ -262,16 +351,23 @@ def add_raster(project, group, path, name, visible, layers):
     layers[name] = (layer, path)
 
 
-def finish(project, out, base, temporary_hillshade, quicklooks):
-    """Writes the quicklooks ([(layer, path, base layers)]) and the project, renaming each when
-    complete; the project names the hillshade by its final path, so it is renamed first."""
+def finish(project, out, process, base, temporary_hillshade, quicklooks):
+    """Writes the quicklooks ([(layer, path, base layers)]), the report page of the first of them
+    (quicklook/report.pdf, and the layout "Report" in the project) and the project, renaming
+    each when complete; the project names the hillshade by its final path, so it is renamed
+    first."""
     quicklook_dir = os.path.join(out, ".quicklook.part")
     shutil.rmtree(quicklook_dir, ignore_errors=True)
     os.makedirs(quicklook_dir)
+    facts = page_facts(out, process, project.crs())
     keep = []
     for name, (layer, path), base_layers in quicklooks:
-        keep.append(quicklook(project, layer, band_heading(path), base_layers, reached_extent(path),
+        keep.append(quicklook(project, layer, base_layers, reached_extent(path), facts,
                               os.path.join(quicklook_dir, name + ".png")))
+    if quicklooks:
+        name, (layer, path), base_layers = quicklooks[0]
+        keep.append(report_layout(project, layer, base_layers, reached_extent(path), facts,
+                                  os.path.join(quicklook_dir, "report.pdf")))
     os.replace(temporary_hillshade, os.path.join(out, "hillshade.tif"))
     base.setDataSource(os.path.join(out, "hillshade.tif"), "Hillshade", "gdal")
     base.resampleFilter().setZoomedInResampler(QgsBilinearRasterResampler())
@@ -334,7 +430,7 @@ def build_study(out, dem_path):
     project.addMapLayer(base, False)
     root.addLayer(base)
     quicklooks = [("hazard", layers["hazard"], [base])] if "hazard" in layers else []
-    finish(project, out, base, temporary_hillshade, quicklooks)
+    finish(project, out, "study", base, temporary_hillshade, quicklooks)
 
 
 def build(out, process, dem_path, release_path):
@@ -377,7 +473,7 @@ def build(out, process, dem_path, release_path):
 
     release = [v for v, _ in vectors if v.name() == "Release"]
     quicklooks = [(name, layers[name], release + [base]) for name in QUICKLOOKS[process] if name in layers]
-    finish(project, out, base, temporary_hillshade, quicklooks)
+    finish(project, out, process, base, temporary_hillshade, quicklooks)
 
 
 def main():

@@ -8,7 +8,8 @@ title, the hillshade and the release, in the process's group; the hillshade lies
 for PROCESS study (`talus study`), the group is Hazard, there is no release, each scenario of
 OUT_DIR/study.json has a group named after it, and each process of its "region" a group of its
 region layers, every one of them styled; the project's CRS is every layer's; a raster release
-draws 0 transparent; the trajectories are off; particles, when written, are animated;
+draws 0 transparent; the trajectories are off; particles, when written, are animated; the
+project holds the print layout "Report" with its furniture, exported as quicklook/report.pdf;
 quicklook/LAYER.png exists for each LAYER given and is not blank (it holds the layer's colours
 and the hillshade's greys, not one flat colour). Prints one line per problem; exit 0 when none.
 """
@@ -44,6 +45,45 @@ def quicklook_problems(path):
     if white > 0.8 * samples:
         problems.append(f"{path}: {100 * white // samples} % white: the map is empty")
     return problems
+
+
+def report_problems(project, out, process):
+    """The report page (issue 38, item 2): a layout "Report" in the project with a map, a legend
+    of the map's visible layers only (no hillshade, one entry each), a scale bar, a north arrow
+    and a foot naming the CRS, the software and, for the sample scene, the terrain's credit; and
+    quicklook/report.pdf beside the quicklooks."""
+    problems = []
+    if not os.path.exists(os.path.join(out, "quicklook", "report.pdf")):
+        problems.append("no quicklook/report.pdf")
+    layout = project.layoutManager().layoutByName("Report")
+    if layout is None:
+        return problems + ["no print layout 'Report' in the project"]
+    kinds = {}
+    for item in layout.items():
+        kinds.setdefault(type(item).__name__, []).append(item)
+    for needed in ("QgsLayoutItemMap", "QgsLayoutItemLegend", "QgsLayoutItemScaleBar", "QgsLayoutItemPicture"):
+        if needed not in kinds:
+            problems.append(f"the report page has no {needed[13:].lower()}")
+    for legend in kinds.get("QgsLayoutItemLegend", []):
+        names = [node.name() for node in legend.model().rootGroup().findLayers()]
+        if any("hillshade" in name.lower() for name in names) or len(names) != len(set(names)):
+            problems.append(f"the report's legend lists {names}: the map's layers once each, no hillshade")
+    text = " ".join(item.text() for item in kinds.get("QgsLayoutItemLabel", []))
+    for needed in ("CRS: ", "Talus "):
+        if needed not in text:
+            problems.append(f"the report page does not name '{needed.strip()}': {text!r}")
+    sample = process != "study" and "sample_dem" in json.dumps(read_record(out).get("inputs", {}))
+    if sample and "Land Tirol" not in text:
+        problems.append(f"the report page of the sample scene lacks its terrain credit: {text!r}")
+    return problems
+
+
+def read_record(out):
+    path = os.path.join(out, "run.json")
+    if not os.path.exists(path):
+        return {}
+    with open(path, encoding="utf-8") as file:
+        return json.load(file)
 
 
 def main():
@@ -120,6 +160,7 @@ def main():
                 problems.append("the particles are not animated (temporal properties off)")
             if not project.timeSettings().temporalRange().begin().isValid():
                 problems.append("the project has no time range for the temporal controller")
+    problems += report_problems(project, out, process)
     bottom = project.layerTreeRoot().layerOrder()[-1] if layers else None
     if bottom is None or bottom.name() != "Hillshade":
         problems.append(f"the bottom layer is {bottom.name() if bottom else None}, not the hillshade")
