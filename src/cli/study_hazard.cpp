@@ -95,15 +95,19 @@ nlohmann::ordered_json write_study_hazard(const Study& study, const StudyChoices
     }
   }
   nlohmann::ordered_json maps = nlohmann::ordered_json::object();
-  const auto add = [&](const Grid<float>& map, const std::string& name, const std::string& what) {
-    gis::LayerDescription layer{name, "Hazard degree" + what + " (" + matrix.guideline + ")", ""};
+  // The rule that turned a rock fall's return period into a cell's probability changes the map
+  // (docs/study.md, "Hazard map"), so the title, the legend heading and the metadata name it.
+  const std::string rule = study.rockfall_reach ? "; rock fall per cell: return period / reach probability"
+                                                : "; rock fall per cell: return period where rocks reach (onset)";
+  const auto add = [&](const Grid<float>& map, const std::string& name, const std::string& what, bool with_rockfall) {
+    gis::LayerDescription layer{name, "Hazard degree" + what + " (" + matrix.guideline + (with_rockfall ? rule : "") + ")", ""};
     layer.style_qml = gis::hazard_style_qml(matrix);
     writer.add(map, layer);
     maps[name] = degree_counts(map, matrix);
   };
-  add(both, "hazard", "");
-  if (rockfall) add(*rockfall, "hazard_rockfall", ", rock fall");
-  if (mudflow) add(*mudflow, "hazard_mudflow", ", mud flow");
+  add(both, "hazard", "", rockfall.has_value());
+  if (rockfall) add(*rockfall, "hazard_rockfall", ", rock fall", true);
+  if (mudflow) add(*mudflow, "hazard_mudflow", ", mud flow", false);
   gis::add_hazard_zones(writer, both, matrix);
   nlohmann::ordered_json probabilities = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < matrix.probabilities.size(); ++k) {

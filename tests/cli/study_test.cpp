@@ -176,7 +176,7 @@ TEST(Study, TheHazardMapTakesEachCellsHighestDegreeOverTheScenarios) {
   const std::string qgis = "/usr/bin/python3 " + (test::source_dir() / "tests/gis/qgis").string();
   const std::string hazard = (folder / "out/hazard").string();
   EXPECT_EQ(std::system((qgis + "/check_layer_in_qgis.py EPSG:31287 " + hazard +
-                         "/hazard.tif 'Hazard degree (foen-2016)' " + hazard +
+                         "/hazard.tif 'Hazard degree (foen-2016; rock fall per cell: return period / reach probability)' " + hazard +
                          "/hazard_mudflow.tif 'Hazard degree, mud flow (foen-2016)'").c_str()),
             0);
   EXPECT_EQ(std::system((qgis + "/check_zones_in_qgis.py EPSG:31287 " + hazard + "/hazard_zones.gpkg").c_str()), 0);
