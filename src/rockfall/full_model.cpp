@@ -4,9 +4,9 @@
 // pressed by it (piston_contact.hpp); friction and air drag take the latest velocities. Steps
 // follow the contact's stiffness, and the guard (step_guard.hpp) retries blown-up steps with
 // halved ones; a step that still fails restarts the rock from its last sound state with shorter
-// steps (the recovery of docs/rockfall-full.md, section 5). A pre-fractured block (fracture.hpp) checks its bonds after every step; when one
-// breaks, the run ends there and each fragment runs on from the break on a copy of the carpet,
-// one after the other. Equations, choices and parameters: docs/rockfall-full.md.
+// steps (the recovery of docs/rockfall-full.md, section 5). A pre-fractured block (fracture.hpp)
+// checks its bonds after every step; when one breaks, the run ends there and each fragment runs
+// on from the break on a copy of the carpet, one after the other. Equations, choices and parameters: docs/rockfall-full.md.
 #include "talus/rockfall/full_model.hpp"
 
 #include <algorithm>
@@ -175,7 +175,7 @@ class FullModelRun {
   RunEnd run(EnergyBalance& balance) {
     std::optional<StopReason> stop = begin();
     held_.pass_to(observer_);
-    newer_.emplace(progress());
+    newer_.emplace(sound_state());
     while (!stop && fragments_.empty()) stop = advance();
     balance.deformation_loss += now_.deformation_loss;
     balance.friction_loss += now_.friction_loss;
@@ -303,7 +303,7 @@ class FullModelRun {
     long stalled_steps;
     double travelled, rest_window, centre_path, rim_path;
   };
-  Checkpoint progress() const {
+  Checkpoint sound_state() const {
     return {now_,        carpet_,    previous_touches_, in_contact_,  unsampled_,
             stalled_steps_, travelled_, rest_window_,      centre_path_, rim_path_};
   }
@@ -314,7 +314,7 @@ class FullModelRun {
     held_before_.pass_to(observer_);
     std::swap(held_before_, held_);
     older_ = std::move(newer_);
-    newer_.emplace(progress());
+    newer_.emplace(sound_state());
     steps_since_checkpoint_ = 0;
   }
 

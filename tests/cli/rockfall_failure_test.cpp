@@ -1,5 +1,5 @@
 // Trajectories that fail numerically (issue 16, Deliver 1; issue 38, item 7; docs/rockfall-full.md,
-// section 5, "When trajectories fail"): below [run] failure_share the run goes on, records each
+// section 5, "Recovery"): below [run] failure_share the run goes on, records each
 // failure in run.json and a problem line, and its layers say how many trajectories they miss, the
 // same at any thread count; above it the run ends with exit code 3 and writes nothing, and its one
 // error line names the first failure and gives the command that reruns that trajectory alone,
