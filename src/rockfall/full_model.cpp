@@ -278,7 +278,8 @@ class FullModelRun {
     }
     now_.last_step = dt;
     const double fresh = fresh_contact_step();  // s, infinite without ground under the rock
-    stalled_steps_ = std::isfinite(fresh) && dt < kStallFraction * fresh ? stalled_steps_ + 1 : 0;
+    // After a restart the contact's own steps are step_scale_ shorter, and so is the stall limit.
+    stalled_steps_ = std::isfinite(fresh) && dt < kStallFraction * step_scale_ * fresh ? stalled_steps_ + 1 : 0;
     if (stalled_steps_ >= kStallSteps) return recover(dt, "the step stalled far below the contact's");
     travelled_ += (now_.rock.position - saved_.rock.position).norm();
     unsampled_ = true;
