@@ -73,6 +73,10 @@ LayerMetadataText layer_metadata(const LayerDescription& layer, const std::map<s
   text.abstract = band_description(layer) + (process.empty() ? "" : ", " + process + " hazard layer") +
                   " written by Talus " + TALUS_VERSION + " on " + written_at + ".";
   if (const std::string scenario = item("TALUS_SCENARIO"); !scenario.empty()) text.abstract += " Scenario: " + scenario + ".";
+  if (const std::string missing = item("TALUS_MISSING_TRAJECTORIES"); !missing.empty() && missing != "0") {
+    text.abstract += " Missing: " + missing + " of the run's " + item("TALUS_TRAJECTORIES") +
+                     " trajectories failed numerically and are not in this layer (run.json, recovery).";
+  }
   text.abstract += " Cells never reached are 0, cells outside the DEM's valid area nodata; run.json beside the layer "
                    "records every input and parameter.";
   text.keywords = {"Talus", "natural hazards"};

@@ -2,7 +2,6 @@
 // (process_ranks.hpp; issue 19, item 6).
 #include "process_ranks.hpp"
 
-#include <optional>
 #include <string>
 
 #include "talus/core/byte_stream.hpp"
@@ -19,20 +18,17 @@ class SingleProcess final : public ProcessRanks {
   std::vector<std::uint8_t> broadcast(const std::vector<std::uint8_t>& bytes) const override { return bytes; }
 };
 
-// What a rank says of its step: nothing (done), or the kind of error, its place and its words.
-enum class Outcome : std::uint8_t { done, input, numerical, ordered, cancelled, other };
+// What a rank says of its step: nothing (done), or the kind of error and its words.
+enum class Outcome : std::uint8_t { done, input, numerical, cancelled, other };
 
 struct Failure {
   Outcome kind = Outcome::done;
-  std::pair<std::uint64_t, std::uint64_t> place{0, 0};
   std::string message;
 };
 
 std::vector<std::uint8_t> encode(const Failure& f) {
   ByteWriter out;
   out.put(f.kind);
-  out.put(f.place.first);
-  out.put(f.place.second);
   out.put_vector(std::vector<char>(f.message.begin(), f.message.end()));
   return out.take();
 }
@@ -41,8 +37,6 @@ Failure decode(const std::vector<std::uint8_t>& bytes) {
   ByteReader in(bytes);
   Failure f;
   f.kind = in.get<Outcome>();
-  f.place.first = in.get<std::uint64_t>();
-  f.place.second = in.get<std::uint64_t>();
   std::vector<char> text;
   in.get_vector(text);
   f.message.assign(text.begin(), text.end());
@@ -53,40 +47,30 @@ Failure run_step(const std::function<void()>& step) {
   try {
     step();
     return {};
-  } catch (const OrderedFailure& e) {
-    return {Outcome::ordered, e.place, e.what()};
   } catch (const InputError& e) {
-    return {Outcome::input, {}, e.what()};
+    return {Outcome::input, e.what()};
   } catch (const NumericalFailure& e) {
-    return {Outcome::numerical, {}, e.what()};
+    return {Outcome::numerical, e.what()};
   } catch (const Cancelled& e) {
-    return {Outcome::cancelled, {}, e.what()};
+    return {Outcome::cancelled, e.what()};
   } catch (const std::exception& e) {
-    return {Outcome::other, {}, e.what()};
+    return {Outcome::other, e.what()};
   }
 }
 
-// Of the ranks' outcomes (in rank order), the one every rank throws.
+// Of the ranks' outcomes (in rank order), the one every rank throws: the lowest rank's failure.
 Failure first_failure(const std::vector<std::vector<std::uint8_t>>& outcomes) {
-  std::optional<Failure> unordered, ordered;
   for (const auto& bytes : outcomes) {
     Failure f = decode(bytes);
-    if (f.kind == Outcome::done) continue;
-    if (f.kind != Outcome::ordered) {
-      if (!unordered) unordered = std::move(f);
-    } else if (!ordered || f.place < ordered->place) {
-      ordered = std::move(f);
-    }
+    if (f.kind != Outcome::done) return f;
   }
-  return unordered ? *unordered : ordered ? *ordered : Failure{};
+  return {};
 }
 
 [[noreturn]] void throw_failure(const Failure& f) {
   switch (f.kind) {
     case Outcome::input:
       throw InputError(f.message);
-    case Outcome::ordered:
-      throw OrderedFailure(f.message, f.place);
     case Outcome::numerical:
       throw NumericalFailure(f.message);
     case Outcome::cancelled:

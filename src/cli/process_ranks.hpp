@@ -7,7 +7,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <utility>
 #include <vector>
 
 #include "talus/core/errors.hpp"
@@ -29,19 +28,8 @@ class ProcessRanks {
 // The command alone in its process.
 const ProcessRanks& single_process();
 
-// A numerical failure with its place in the whole work's order, the (source, run) of a
-// trajectory: of several ranks' such failures the earliest is thrown, the one a single process
-// would have met (monte_carlo.hpp).
-class OrderedFailure : public NumericalFailure {
- public:
-  OrderedFailure(const std::string& what, std::pair<std::uint64_t, std::uint64_t> where)
-      : NumericalFailure(what), place(where) {}
-  std::pair<std::uint64_t, std::uint64_t> place;
-};
-
 // Runs `step` on this rank, then, when it threw on any rank, throws on every rank the error of
-// the lowest rank that failed (or the earliest OrderedFailure when every failure is one), as
-// InputError, NumericalFailure, Cancelled or std::runtime_error.
+// the lowest rank that failed, as InputError, NumericalFailure, Cancelled or std::runtime_error.
 void together(const ProcessRanks& ranks, const std::function<void()>& step);
 
 }  // namespace talus::cli

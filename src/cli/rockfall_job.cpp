@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "envelope_convergence_report.hpp"
+#include "failed_trajectories.hpp"
 #include "intensity_layer.hpp"
 #include "rockfall_layers.hpp"
 #include "rockfall_tiles.hpp"
@@ -69,38 +70,6 @@ std::unique_ptr<TrajectoryModel> trajectory_model(const RockfallOptions& o) {
   return std::make_unique<FullModel>(o.full);
 }
 
-// The command line that reruns one trajectory alone: this run's, with --only-source and
-// --only-run set to it (docs/rockfall-full.md, section 5).
-std::string single_trajectory_command(const std::vector<std::string>& command_line, std::uint64_t source,
-                                      std::uint64_t run) {
-  std::string text;
-  for (std::size_t i = 0; i < command_line.size(); ++i) {
-    const std::string& word = command_line[i];
-    if (word == "--only-source" || word == "--only-run") {
-      ++i;
-      continue;
-    }
-    if (word.rfind("--only-source=", 0) == 0 || word.rfind("--only-run=", 0) == 0) continue;
-    const bool plain = !word.empty() && word.find_first_of(" \t'\"$\\") == std::string::npos;
-    text += (text.empty() ? "" : " ") + (plain ? word : "'" + word + "'");
-  }
-  return text + " --only-source " + std::to_string(source) + " --only-run " + std::to_string(run);
-}
-
-// run_rockfall, with a failing trajectory's error extended by the command that reproduces it
-// (ordered by its source and run, so that of several MPI ranks' failures the earliest is told).
-RockfallResult run_trajectories(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
-                                const TrajectoryModel& model, const RockfallSettings& settings,
-                                const std::vector<std::string>& command_line, Progress& progress) {
-  try {
-    return run_rockfall(ground, sources, model, settings, &progress);
-  } catch (const TrajectoryFailure& failure) {
-    throw OrderedFailure(std::string(failure.what()) + "; nothing was written; to rerun that trajectory alone: " +
-                             single_trajectory_command(command_line, failure.source, failure.run),
-                         {failure.source, failure.run});
-  }
-}
-
 // How far around a rock at a halo's edge the trajectory models may look (m): two sample spacings
 // (the path between the samples that are checked against the halo), 10 m for the longest step,
 // and four times the largest rock's axis (its piston carpet, a fragment's start).
@@ -156,7 +125,7 @@ std::optional<RockfallResult> simulate_shares(const RockfallScene& r, const Traj
                                               const JobOutput& output, const ProcessRanks& ranks, TileLines& tile_lines) {
   o.settings.share = {static_cast<std::uint32_t>(ranks.rank()), static_cast<std::uint32_t>(ranks.size()), nullptr};
   const TrajectoryRunner run = [&](const GroundModel& ground, const RockfallSettings& settings, Progress& part) {
-    return run_trajectories(ground, r.sources, model, settings, o.command_line, part);
+    return run_rockfall(ground, r.sources, model, settings, &part);
   };
   if (r.plan.tiled() || !o.unit_parts.empty()) {
     std::optional<UnitParts> parts;
@@ -242,7 +211,11 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   if (!ranks.root()) return;  // rank 0 writes
   const RockfallResult& result = *joined;
   const double simulate_seconds = seconds_since(simulate_start);
+  check_failure_share(result, o.failure_share, o.command_line);
   gis::LayerWriter& writer = *staged;
+  // The maps say how many trajectories they miss (docs/layers.md, "Metadata").
+  writer.set_metadata("TALUS_TRAJECTORIES", std::to_string(result.trajectories + result.failures.size()));
+  writer.set_metadata("TALUS_MISSING_TRAJECTORIES", std::to_string(result.failures.size()));
 
   const auto write_start = std::chrono::steady_clock::now();
   const nlohmann::json intensity_entry = write_layers_with_intensity(writer, rockfall_hazard_layers(result.statistics.layers()), intensity);
@@ -269,12 +242,14 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
                         {"trajectories", result.trajectories},
                         {"stop_reasons", stops},
                         {"fragments", result.fragments},
+                        {"failed_trajectories", result.failures.size()},
                         {"saved_trajectories", result.lines.size()}});
   record.set("runout", runout_summary(result.runouts));
   record.set("runs", runs_record(result, o.settings));
   record.set("convergence", convergence_record(result, o.settings));
   if (intensity) record.set("intensity", intensity_entry);
   record.set("tiles", tiles_record(read->plan, o.tiles));
+  record.set("recovery", recovery_record(result, o.failure_share));
   const std::vector<std::string> trajectory_problems =
       o.mode == "fast" ? truncated_trajectory_problems(result.stop_counts, "[fast_bounce] max_time", o.fast.max_time, o.tiles.halo)
                        : truncated_trajectory_problems(result.stop_counts, "[full] max_time", o.full.max_time, o.tiles.halo);
@@ -283,6 +258,8 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   std::vector<std::string> problems = scene.problems;
   problems.insert(problems.end(), tile_lines.problems.begin(), tile_lines.problems.end());
   problems.insert(problems.end(), trajectory_problems.begin(), trajectory_problems.end());
+  const std::vector<std::string> failed = failure_problems(result, o.failure_share);
+  problems.insert(problems.end(), failed.begin(), failed.end());
   const std::vector<std::string> unconverged = convergence_problems(result, o.settings);
   problems.insert(problems.end(), unconverged.begin(), unconverged.end());
   const std::vector<std::string> thin_classes = intensity ? intensity_problems(intensity_entry) : std::vector<std::string>{};
@@ -313,6 +290,7 @@ void rockfall_job(RockfallOptions& o, ParameterTable& table, const JobOutput& ou
   for (const auto& problem : tile_lines.problems) output.say("problem: " + problem);
   for (const auto& line : convergence_lines(result, o.settings)) output.say(line);
   for (const auto& problem : trajectory_problems) output.say("problem: " + problem);
+  for (const auto& problem : failed) output.say("problem: " + problem);
   for (const auto& problem : unconverged) output.say("problem: " + problem);
   if (intensity) output.say(intensity_summary(intensity_entry));
   for (const auto& problem : thin_classes) output.say("problem: " + problem);

@@ -87,6 +87,14 @@ ParameterTable rockfall_parameter_table(RockfallOptions& o) {
   table.add("run", "seed", "", "seed of the counter-based random numbers", &o.settings.seed);
   table.add("run", "threads", "", "threads (0: all cores); the layers do not depend on it", &o.settings.threads,
             Range{1, kMaxThreads, false, false, 0, "all cores"});
+  table.add("run", "redraws", "",
+            "a trajectory that failed numerically, after the full model's restarts, is drawn again from a fresh random "
+            "stream up to this many times before it is recorded as failed (docs/rockfall-full.md, section 5)",
+            &o.settings.redraws, Range{0, 100, false, false});
+  table.add("run", "failure_share", "%",
+            "a run whose failed trajectories exceed this share of its trajectories fails (exit code 3, nothing "
+            "written); below it they are recorded in run.json and reported, and the layers miss them",
+            &o.failure_share, Range{0, 100, false, false});
   table.add("run", "saved_trajectories", "", "at most this many lines in trajectories.gpkg", &o.settings.saved_trajectories, Range{0, 1e+07, false, false});
   table.add("tiles", "memory", "GB",
             "memory the run may use; a region whose ground model needs more runs in tiles (docs/study.md, Tiles)",
@@ -150,7 +158,11 @@ ParameterTable rockfall_parameter_table(RockfallOptions& o) {
   table.add("full", "rolling_resistance", "-", "multiplier of the lithology's rolling friction (0: pure rolling)",
             &m.rolling_resistance, Range{0, 100, false, false});
   table.add("full", "guard", "", "detect blown-up steps and retry them with smaller steps", &m.guard);
-  table.add("full", "max_retries", "", "step halvings before a run fails with exit code 3", &m.max_retries, Range{0, 60, false, false});
+  table.add("full", "max_retries", "", "step halvings before the step counts as failed (then restarts)", &m.max_retries, Range{0, 60, false, false});
+  table.add("full", "restarts", "",
+            "a step that fails after max_retries halvings restarts the rock from its last sound state with contact steps "
+            "a quarter as long, up to this many times per rock (docs/rockfall-full.md, section 5)",
+            &m.restarts, Range{0, 20, false, false});
   table.add("full", "approach_fraction", "-", "per step, a piston top may be approached by this fraction of the spacing beyond its gap",
             &m.approach_fraction, Range{0.01, 1});
   table.add("full", "fresh_contact_pistons", "", "a coming contact's stiffness counts this many pistons at k3", &m.fresh_contact_pistons, Range{0, 1e+06, false, false});

@@ -37,6 +37,7 @@ struct RockfallOptions {
   FullModelParameters full;
   double fracture_strength = FullModelParameters{}.fracture_strength / 1000.0;  // kN, into full.fracture_strength (N)
   TileChoice tiles;            // [tiles], --memory, --halo, --tile-size (tile_plan.hpp)
+  double failure_share = 1.0;  // %: more failed trajectories than this fail the run (exit code 3)
   // A study's resume within the scenario (unit_parts.hpp): the folder its units of work are
   // committed to, and what their results depend on; empty: not committed.
   std::filesystem::path unit_parts;

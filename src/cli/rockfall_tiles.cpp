@@ -122,7 +122,7 @@ std::optional<RockfallResult> simulate_units(const gis::Scene& region, const Gro
   if (!whole) {  // no source at all: what an untiled run of none gives
     whole.emplace(RockfallResult{RockfallStatistics(region.dem.elevation), {},
                                  std::vector<std::uint64_t>(kStopReasonCount, 0), {}, 0, 1, 0,
-                                 std::vector<std::uint64_t>(sources.size(), 0), std::nullopt, std::nullopt});
+                                 std::vector<std::uint64_t>(sources.size(), 0), std::nullopt, std::nullopt, 0, 0, {}});
   }
   return whole;
 }

@@ -12,6 +12,11 @@ std::uint64_t stream_key(std::uint64_t seed, std::uint64_t source, std::uint64_t
   return splitmix64(h ^ run);
 }
 
+std::uint64_t stream_key(std::uint64_t seed, std::uint64_t source, std::uint64_t run, std::uint64_t draw) {
+  const std::uint64_t key = stream_key(seed, source, run);
+  return draw == 0 ? key : splitmix64(key ^ splitmix64(draw));
+}
+
 std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t source, std::uint64_t run, std::uint64_t counter) {
   return splitmix64(stream_key(seed, source, run) ^ counter);
 }

@@ -3,9 +3,10 @@
 // drift the piston carpet (piston_carpet.hpp) is scrolled under the rock's bounding box and
 // pressed by it (piston_contact.hpp); friction and air drag take the latest velocities. Steps
 // follow the contact's stiffness, and the guard (step_guard.hpp) retries blown-up steps with
-// halved ones. A pre-fractured block (fracture.hpp) checks its bonds after every step; when one
-// breaks, the run ends there and each fragment runs on from the break on a copy of the carpet,
-// one after the other. Equations, choices and parameters: docs/rockfall-full.md.
+// halved ones; a step that still fails restarts the rock from its last sound state with shorter
+// steps (the recovery of docs/rockfall-full.md, section 5). A pre-fractured block (fracture.hpp)
+// checks its bonds after every step; when one breaks, the run ends there and each fragment runs
+// on from the break on a copy of the carpet, one after the other. Equations, choices and parameters: docs/rockfall-full.md.
 #include "talus/rockfall/full_model.hpp"
 
 #include <algorithm>
@@ -37,6 +38,11 @@ constexpr double kReleaseTolerance = 1e-6;  // m: a rock released into the groun
 constexpr double kMinStepFraction = 1e-6;
 constexpr double kStallFraction = 1e-3;
 constexpr long kStallSteps = 10000;
+// The recovery (docs/rockfall-full.md, section 5): a sound state is kept every kCheckpointSteps
+// accepted steps, and a failed step restarts the rock from the older of the last two, so at least
+// kCheckpointSteps back, with the contact steps' rules scaled by kRestartStepScale.
+constexpr long kCheckpointSteps = 64;
+constexpr double kRestartStepScale = 0.25;
 
 // The pistons of the contact range as the step-size rules see them (docs/rockfall-full.md,
 // section 4): their mean axis, how high they reach along it, and how steep they are.
@@ -96,6 +102,36 @@ struct RunState {
 
 enum class Attempt { accepted, unsound, outside };
 
+// What a run reports, held back since a checkpoint (docs/rockfall-full.md, section 5, "Recovery"):
+// a restart from that checkpoint withdraws them, so the observer sees one consistent trajectory.
+class HeldReports {
+ public:
+  void sample(const TrajectorySample& at) { events_.push_back({Kind::sample, at, 0.0, 0.0, 0.0, 0.0}); }
+  void fragment(const TrajectorySample& at) { events_.push_back({Kind::fragment, at, 0.0, 0.0, 0.0, 0.0}); }
+  void loss(double x, double y, double friction, double deformation) {
+    events_.push_back({Kind::loss, {}, x, y, friction, deformation});
+  }
+  // Gives the reports to `observer`, in order, and forgets them.
+  void pass_to(TrajectoryObserver& observer) {
+    for (const Event& e : events_) {
+      if (e.kind == Kind::sample) observer.on_sample(e.at);
+      if (e.kind == Kind::fragment) observer.on_fragment(e.at);
+      if (e.kind == Kind::loss) observer.on_energy_loss(e.x, e.y, e.friction, e.deformation);
+    }
+    events_.clear();
+  }
+  void withdraw() { events_.clear(); }
+
+ private:
+  enum class Kind { sample, fragment, loss };
+  struct Event {
+    Kind kind;
+    TrajectorySample at;
+    double x, y, friction, deformation;
+  };
+  std::vector<Event> events_;
+};
+
 // Where one FullModelRun starts: the block at its release, or a fragment at the break that made it
 // (docs/rockfall-full.md, section 11).
 struct RunStart {
@@ -138,12 +174,16 @@ class FullModelRun {
   // breaks (then returns its fragments); adds its losses to `balance` either way.
   RunEnd run(EnergyBalance& balance) {
     std::optional<StopReason> stop = begin();
+    held_.pass_to(observer_);
+    newer_.emplace(sound_state());
     while (!stop && fragments_.empty()) stop = advance();
     balance.deformation_loss += now_.deformation_loss;
     balance.friction_loss += now_.friction_loss;
     balance.drag_loss += now_.drag_loss;
+    if (stop && unsampled_) report_sample();
+    held_before_.pass_to(observer_);
+    held_.pass_to(observer_);
     if (!stop) return {std::nullopt, std::move(fragments_)};
-    if (unsampled_) report_sample();
     observer_.on_stop(sample(), *stop);
     balance.kinetic += now_.energy.kinetic;
     balance.potential += now_.energy.potential;
@@ -225,25 +265,22 @@ class FullModelRun {
     const double deformation_before = now_.deformation_loss;
     for (int retry = 0;; ++retry) {
       if (dt < min_step() || !(now_.time + dt > now_.time)) {
-        throw_numerical_failure(now_.time, now_.rock.position, dt, "the step collapsed below its floor");
+        return recover(dt, "the step collapsed below its floor");
       }
       const Attempt attempt = step(dt);
       if (attempt == Attempt::accepted) break;
       const Eigen::Vector3d reached = now_.rock.position;
       restore();
       if (attempt == Attempt::outside) return outside(reached);
-      if (!parameters_.guard) throw_numerical_failure(now_.time, now_.rock.position, dt, "the state is not finite");
-      if (retry >= parameters_.max_retries) {
-        throw_numerical_failure(now_.time, now_.rock.position, dt, "blow-up not recovered by smaller steps");
-      }
+      if (!parameters_.guard) return recover(dt, "the state is not finite");
+      if (retry >= parameters_.max_retries) return recover(dt, "blow-up not recovered by smaller steps");
       dt *= 0.5;
     }
     now_.last_step = dt;
     const double fresh = fresh_contact_step();  // s, infinite without ground under the rock
-    stalled_steps_ = std::isfinite(fresh) && dt < kStallFraction * fresh ? stalled_steps_ + 1 : 0;
-    if (stalled_steps_ >= kStallSteps) {
-      throw_numerical_failure(now_.time, now_.rock.position, dt, "the step stalled far below the contact's");
-    }
+    // After a restart the contact's own steps are step_scale_ shorter, and so is the stall limit.
+    stalled_steps_ = std::isfinite(fresh) && dt < kStallFraction * step_scale_ * fresh ? stalled_steps_ + 1 : 0;
+    if (stalled_steps_ >= kStallSteps) return recover(dt, "the step stalled far below the contact's");
     travelled_ += (now_.rock.position - saved_.rock.position).norm();
     unsampled_ = true;
     report_loss(now_.friction_loss - friction_before, now_.deformation_loss - deformation_before);
@@ -252,6 +289,75 @@ class FullModelRun {
     in_contact_ = in_contact;
     if (!block_.bonds().empty() && break_up()) return std::nullopt;
     if (at_rest(dt)) return StopReason::at_rest;
+    if (++steps_since_checkpoint_ >= kCheckpointSteps) checkpoint();
+    return std::nullopt;
+  }
+
+  // --- recovery (docs/rockfall-full.md, section 5, "Recovery") ---------------------------------
+
+  // Everything an accepted step changes: a sound state the rock can restart from.
+  struct Checkpoint {
+    RunState now;
+    PistonCarpet carpet;
+    std::vector<PistonTouch> previous_touches;
+    bool in_contact, unsampled;
+    long stalled_steps;
+    double travelled, rest_window, centre_path, rim_path;
+  };
+  Checkpoint sound_state() const {
+    return {now_,        carpet_,    previous_touches_, in_contact_,  unsampled_,
+            stalled_steps_, travelled_, rest_window_,      centre_path_, rim_path_};
+  }
+
+  // After kCheckpointSteps accepted steps: the reports before the older checkpoint can no longer
+  // be withdrawn and go to the observer; the newer checkpoint becomes the older.
+  void checkpoint() {
+    held_before_.pass_to(observer_);
+    std::swap(held_before_, held_);
+    older_ = std::move(newer_);
+    newer_.emplace(sound_state());
+    steps_since_checkpoint_ = 0;
+  }
+
+  // A step failed (`reason`, the shortest step tried `dt` s): the rock restarts from the older
+  // checkpoint with the contact steps' rules scaled by kRestartStepScale once more and every
+  // piston's compression bounded by its rest top's depth in the rock (section 3.5, which makes it
+  // continuous where a piston axis grazes the rock), and every report since that checkpoint is
+  // withdrawn; after parameters_.restarts restarts, or with the guard off, the failure is thrown
+  // (StepFailure). Pistons that hold less under the bound give their elastic energy up as a
+  // deformation loss.
+  std::optional<StopReason> recover(double dt, const char* reason) {
+    if (restarts_ >= parameters_.restarts || !parameters_.guard) {
+      throw_numerical_failure(now_.time, now_.rock.position, dt, reason);
+    }
+    ++restarts_;
+    observer_.on_restart(now_.time);
+    Checkpoint& from = older_ ? *older_ : *newer_;
+    now_ = from.now;
+    carpet_ = from.carpet;
+    previous_touches_ = from.previous_touches;
+    in_contact_ = from.in_contact;
+    unsampled_ = from.unsampled;
+    stalled_steps_ = from.stalled_steps;
+    travelled_ = from.travelled;
+    rest_window_ = from.rest_window;
+    centre_path_ = from.centre_path;
+    rim_path_ = from.rim_path;
+    range_.gather(carpet_, now_.range);
+    contact_.bound_every_compression = true;
+    const double elastic = now_.normal.elastic_energy;
+    journal_.clear();
+    evaluate_forces();
+    now_.energy = energy_of(now_);
+    const double relaxed = std::max(0.0, elastic - now_.normal.elastic_energy);
+    now_.deformation_loss += now_.normal.dissipated + relaxed;
+    if (older_) newer_ = std::move(older_);
+    older_.reset();
+    held_before_.withdraw();
+    held_.withdraw();
+    report_loss(0.0, now_.normal.dissipated + relaxed);
+    steps_since_checkpoint_ = 0;
+    step_scale_ *= kRestartStepScale;
     return std::nullopt;
   }
 
@@ -473,13 +579,13 @@ class FullModelRun {
     const bool touching = !now_.normal.touches.empty();
     if (!touching && clearance > closing * dt + 0.5 * parameters_.gravity * dt * dt) return dt;
 
-    dt = std::min(dt, fresh_contact_step());
-    const double period_factor = parameters_.time_step_factor * 2.0 * std::numbers::pi;
+    dt = std::min(dt, step_scale_ * fresh_contact_step());
+    const double period_factor = step_scale_ * parameters_.time_step_factor * 2.0 * std::numbers::pi;
     if (now_.normal.stiffness > 0.0) dt = std::min(dt, period_factor * std::sqrt(body_.mass() / now_.normal.stiffness));
     if (now_.normal.rotational_stiffness > 0.0) {
       dt = std::min(dt, period_factor * std::sqrt(body_.min_inertia() / now_.normal.rotational_stiffness));
     }
-    const double allowance = parameters_.approach_fraction * spacing_;  // m per step
+    const double allowance = step_scale_ * parameters_.approach_fraction * spacing_;  // m per step
     if (clearance > 0.0 && closing > 0.0) dt = std::min(dt, (clearance + allowance) / closing);
     const auto limit = [&](const Eigen::Vector3d& arm, const Eigen::Vector3d& axis, double gap) {
       const double along = std::abs((rock.velocity + w.cross(arm)).dot(axis));
@@ -532,14 +638,14 @@ class FullModelRun {
             on_ground ? x.z() - ground_.height(x.x(), x.y()) : 0.0};
   }
   void report_sample() {
-    observer_.on_sample(sample());
+    held_.sample(sample());
     travelled_ = 0.0;
     unsampled_ = false;
   }
   // A new fragment's first sample goes to on_fragment (trajectory_observer.hpp).
   void report_first_sample() {
     if (announced_) {
-      observer_.on_fragment(sample());
+      held_.fragment(sample());
       travelled_ = 0.0;
       unsampled_ = false;
     } else {
@@ -550,7 +656,7 @@ class FullModelRun {
   void report_loss(double friction, double deformation) {
     if (friction == 0.0 && deformation == 0.0) return;
     const Eigen::Vector3d at = now_.rock.position + now_.normal.centroid();
-    observer_.on_energy_loss(at.x(), at.y(), friction, deformation);
+    held_.loss(at.x(), at.y(), friction, deformation);
   }
 
   const FullModelParameters& parameters_;
@@ -560,7 +666,7 @@ class FullModelRun {
   const RigidRock& body_;            // block_'s
   const double spacing_;             // m: carpet_spacing x the released rock's nominal equivalent diameter cbrt(6 V / pi)
   const std::int64_t margin_cells_;  // lattice steps of carpet_margin
-  const PistonContactParameters contact_;
+  PistonContactParameters contact_;  // bound_every_compression after a restart
   PistonCarpet carpet_;
   PistonRange range_;                   // pistons of now_.range
   const PistonRange empty_range_;       // tests nothing (the rock is clear of the carpet)
@@ -582,6 +688,13 @@ class FullModelRun {
   double rest_window_ = 0.0;         // s of the current rest window
   double centre_path_ = 0.0;         // m travelled by the centre in it
   double rim_path_ = 0.0;            // m travelled by the rim in it
+  // The recovery: reports since the older checkpoint (held_before_, up to the newer one, and held_),
+  // the last two checkpoints, restarts so far and the scale of the contact steps' rules.
+  HeldReports held_before_, held_;
+  std::optional<Checkpoint> older_, newer_;
+  long steps_since_checkpoint_ = 0;
+  int restarts_ = 0;
+  double step_scale_ = 1.0;
 };
 
 }  // namespace

@@ -8,17 +8,19 @@
 #include <atomic>
 #include <cmath>
 #include <condition_variable>
-#include <exception>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <queue>
+#include <string>
 #include <utility>
 
 #include "talus/core/counter_random.hpp"
 #include "talus/ground/perlin_noise.hpp"
 #include "talus/ground/perturbed_ground.hpp"
 #include "talus/rockfall/release_rock.hpp"
+#include "talus/rockfall/step_guard.hpp"
 
 namespace talus {
 namespace {
@@ -56,8 +58,11 @@ class RunObserver final : public TrajectoryObserver {
  public:
   RunObserver(RockfallStatistics::Recorder& recorder, const std::optional<TileBounds>& tile)
       : recorder_(recorder), tile_(tile) {}
+  // A new draw of a run: everything the last one reported is forgotten (its line's vertices too).
   void start(TrajectoryLine* line) {
     line_ = line;
+    if (line_ != nullptr) line_->vertices.clear();
+    restarted_ = false;
     path_length_ = 0;
     max_energy_ = 0;
     has_last_ = false;
@@ -95,6 +100,8 @@ class RunObserver final : public TrajectoryObserver {
     ++fragments_;
     recorder_.on_fragment(start);
   }
+  void on_restart(double) override { restarted_ = true; }
+  bool restarted() const { return restarted_; }
   // The model was left by ReachedTileEdge: the trajectory stops at its last sample on the tile.
   void stop_at_tile_edge() { on_stop(last_sample_, StopReason::tile_edge); }
   double path_length() const { return path_length_; }
@@ -117,6 +124,7 @@ class RunObserver final : public TrajectoryObserver {
   Eigen::Vector3d last_ = Eigen::Vector3d::Zero();
   bool has_last_ = false;
   bool following_ = true;            // still on the first fragment
+  bool restarted_ = false;           // the model restarted the rock after a failed step
   std::vector<StopReason> stops_;
   std::uint64_t fragments_ = 0;
 };
@@ -129,10 +137,11 @@ struct RunDraws {
   MaterialVariation variation;
 };
 
+// `draw` 0 is the run's own stream; a run drawn again after a numerical failure takes the next.
 RunDraws draw_run(const GroundModel& ground, const ReleaseSource& source, const RockfallSettings& settings,
-                  std::uint64_t source_index, std::uint64_t run) {
+                  std::uint64_t source_index, std::uint64_t run, std::uint64_t draw) {
   const StochasticParameters& s = settings.stochastic;
-  CounterRandom random(settings.seed, source_index, run);
+  CounterRandom random(settings.seed, source_index, run, draw);
   RunDraws draws;
   draws.rock = release_rock(settings.rock, source.conditions);
   draws.rock.axes *= vary(random, s.size_variation);
@@ -156,6 +165,18 @@ RunDraws draw_run(const GroundModel& ground, const ReleaseSource& source, const 
   draws.start.position = {x, y, 0.0};
   draws.start.velocity = release_velocity(source.conditions);
   return draws;
+}
+
+// The record of a run that failed on its last draw: the step's time, place and reason when the full
+// model's guard gave up (StepFailure), otherwise the failure's message.
+FailedTrajectory failed_trajectory(const NumericalFailure& failure, std::uint64_t source, std::uint64_t run) {
+  FailedTrajectory failed{source, run, std::numeric_limits<double>::quiet_NaN(), Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), failure.what()};
+  if (const auto* step = dynamic_cast<const StepFailure*>(&failure)) {
+    failed.time = step->time;
+    failed.position = step->position;
+    failed.reason = step->reason;
+  }
+  return failed;
 }
 
 // Runs of one source that a thread takes at once.
@@ -409,22 +430,9 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       settings.saved_trajectories == 0 ? 0 : std::max<std::uint64_t>(1, (sampled + settings.saved_trajectories - 1) / settings.saved_trajectories);
   const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
 
-  RockfallResult result{RockfallStatistics(ground.elevation_grid()), {}, std::vector<std::uint64_t>(kStopReasonCount, 0), {}, 0, threads, 0, {}, std::nullopt, std::nullopt};
+  RockfallResult result{RockfallStatistics(ground.elevation_grid()), {}, std::vector<std::uint64_t>(kStopReasonCount, 0), {}, 0, threads, 0, {}, std::nullopt, std::nullopt, 0, 0, {}};
   std::vector<std::pair<RunKey, double>> runouts;
   std::atomic<bool> cancelled{false};
-  // A run that throws (NumericalFailure: exit code 3) ends them all; the earliest such run's
-  // failure is thrown, with its source and run, once every thread has left the loop.
-  std::exception_ptr failure;
-  RunKey failed_run{};
-  const auto keep_failure = [&](std::exception_ptr thrown, RunKey key) {
-#pragma omp critical(talus_rockfall_failure)
-    if (failure == nullptr || key < failed_run) {
-      failure = std::move(thrown);
-      failed_run = key;
-    }
-    cancelled.store(true);
-    batches.cancel();
-  };
 
 #pragma omp parallel num_threads(threads)
   {
@@ -435,7 +443,8 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
     std::vector<std::uint64_t> stop_counts(kStopReasonCount, 0);
     std::vector<std::pair<RunKey, double>> thread_runouts;
     std::vector<EnvelopeCell> crossed;
-    std::uint64_t fragments = 0;
+    std::vector<FailedTrajectory> failures;
+    std::uint64_t fragments = 0, troubled = 0, redrawn = 0;
     const bool reporter = omp_get_thread_num() == 0;
 
     Chunk chunk;
@@ -443,38 +452,49 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       const std::uint64_t source_index = batches.source_at(chunk.position);
       const ReleaseSource& source = sources[source_index];
       std::uint64_t run = chunk.begin;
-      try {
-        for (; run < chunk.end && !cancelled.load(std::memory_order_relaxed); ++run) {
-          RunDraws draws = draw_run(ground, source, settings, source_index, run);
+      for (; run < chunk.end && !cancelled.load(std::memory_order_relaxed); ++run) {
+        TrajectoryLine* line = nullptr;
+        if (save_stride != 0 && rule.saved(chunk.position, run, save_stride)) {
+          lines.push_back({source_index, run, source.feature_id, StopReason::at_rest, 0, 0, {}});
+          line = &lines.back();
+        }
+        // The recovery (docs/rockfall-full.md, section 5): a draw that fails numerically is
+        // forgotten and the run drawn again from a fresh stream; the last draw's failure is kept.
+        bool done = false;
+        for (std::uint64_t draw = 0;; ++draw) {
+          RunDraws draws = draw_run(ground, source, settings, source_index, run, draw);
           const PerlinNoise noise(draws.noise);
           const PerturbedGround perturbed(ground, &noise, draws.variation);
           draws.start.position.z() = perturbed.height(draws.start.position.x(), draws.start.position.y()) +
                                      draws.rock.half_height(draws.start.orientation) +
                                      source.conditions.release_height.value_or(settings.stochastic.release_height);
-          TrajectoryLine* line = nullptr;
-          if (save_stride != 0 && rule.saved(chunk.position, run, save_stride)) {
-            lines.push_back({source_index, run, source.feature_id, StopReason::at_rest, 0, 0, {}});
-            line = &lines.back();
-          }
           observer.start(line);
+          bool failed = false;
           try {
             model.run(perturbed, draws.rock, draws.start, observer);
           } catch (const NumericalFailure& e) {
-            throw TrajectoryFailure(e.what(), source_index, run);
+            recorder.discard();
+            failed = true;
+            if (draw >= static_cast<std::uint64_t>(settings.redraws)) failures.push_back(failed_trajectory(e, source_index, run));
           } catch (const ReachedTileEdge&) {
             observer.stop_at_tile_edge();
           }
-          if (rule.tested()) recorder.append_envelope(crossed);
-          recorder.commit(source_index);
-          thread_runouts.push_back({{source_index, run}, observer.path_length()});
-          for (const StopReason reason : observer.stops()) ++stop_counts[static_cast<std::size_t>(reason)];
-          fragments += observer.fragments();
+          if (draw == 0 && (failed || observer.restarted())) ++troubled;
+          done = !failed;
+          if (done || draw >= static_cast<std::uint64_t>(settings.redraws)) break;
+          if (draw == 0) ++redrawn;
         }
-        batches.finish(chunk, run == chunk.end, crossed);
-      } catch (...) {
-        keep_failure(std::current_exception(), {source_index, run});
-        continue;
+        if (!done) {
+          if (line != nullptr) lines.pop_back();
+          continue;
+        }
+        if (rule.tested()) recorder.append_envelope(crossed);
+        recorder.commit(source_index);
+        thread_runouts.push_back({{source_index, run}, observer.path_length()});
+        for (const StopReason reason : observer.stops()) ++stop_counts[static_cast<std::size_t>(reason)];
+        fragments += observer.fragments();
       }
+      batches.finish(chunk, run == chunk.end, crossed);
       if (reporter && progress != nullptr) {
         progress->report(batches.fraction_done(), "trajectories");
         if (progress->cancelled()) {
@@ -488,15 +508,18 @@ RockfallResult run_rockfall(const GroundModel& ground, const std::vector<Release
       result.statistics.merge(statistics);
       for (std::size_t r = 0; r < stop_counts.size(); ++r) result.stop_counts[r] += stop_counts[r];
       result.fragments += fragments;
+      result.troubled += troubled;
+      result.redrawn += redrawn;
       for (auto& line : lines) result.lines.push_back(std::move(line));
+      for (auto& failure : failures) result.failures.push_back(std::move(failure));
       runouts.insert(runouts.end(), thread_runouts.begin(), thread_runouts.end());
     }
   }
-  if (failure != nullptr) std::rethrow_exception(failure);
   if (cancelled.load()) throw Cancelled();
   std::sort(result.lines.begin(), result.lines.end(), [](const TrajectoryLine& a, const TrajectoryLine& b) {
     return a.source_id != b.source_id ? a.source_id < b.source_id : a.run_id < b.run_id;
   });
+  std::sort(result.failures.begin(), result.failures.end());
   std::sort(runouts.begin(), runouts.end());
   result.runouts.reserve(runouts.size());
   for (const auto& [key, length] : runouts) result.runouts.push_back(length);

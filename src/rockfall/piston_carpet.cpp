@@ -68,7 +68,7 @@ std::size_t checked_slot(const CarpetWindow& window, std::int64_t i, std::int64_
 
 }  // namespace
 
-PistonCarpet::PistonCarpet(const PerturbedGround& ground, double spacing) : ground_(ground), spacing_(spacing) {
+PistonCarpet::PistonCarpet(const PerturbedGround& ground, double spacing) : ground_(&ground), spacing_(spacing) {
   if (!(spacing > 0.0 && std::isfinite(spacing))) {
     throw InputError("piston carpet: the piston spacing must be a positive number of metres, got " +
                      std::to_string(spacing));
@@ -119,11 +119,11 @@ Piston PistonCarpet::make_piston(std::int64_t i, std::int64_t j) const {
   piston.j = j;
   const double x = lattice_coordinate(i, spacing_);
   const double y = lattice_coordinate(j, spacing_);
-  if (!ground_.contains(x, y)) {
+  if (!ground_->contains(x, y)) {
     piston.rest_top = Eigen::Vector3d(x, y, std::numeric_limits<double>::quiet_NaN());
     return piston;
   }
-  const GroundPoint point = ground_.at(x, y);
+  const GroundPoint point = ground_->at(x, y);
   piston.valid = true;
   piston.rest_top = Eigen::Vector3d(x, y, point.height);
   piston.axis = point.normal;

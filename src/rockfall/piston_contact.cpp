@@ -128,10 +128,16 @@ void press_carpet(PistonCarpet& carpet, const PistonRange& range, const RigidRoc
     const double depth = depth_below_surface(rock, top_body, axis_body, parameters);
     double compression = footprint + depth;
     // A fragment's cut faces (docs/rockfall-full.md, section 3.5): the compression is at most how
-    // deep the rest top lies below the surface over the grazing cosine.
+    // deep the rest top lies below the surface over the grazing cosine; in the recovery (section
+    // 5) under every rock, with -f x inner_radius as the depth below its outer surface.
     const Eigen::Vector3d rest_offset = piston.rest_top - centre;
+    const Eigen::Vector3d rest_body = to_body * rest_offset;
     Eigen::Vector3d inwards = Eigen::Vector3d::Zero();
-    const double sideways = rock.depth_inside(to_body * rest_offset, inwards) / parameters.grazing_cosine;
+    double sideways = rock.depth_inside(rest_body, inwards) / parameters.grazing_cosine;
+    if (parameters.bound_every_compression && !rock.has_cut_faces()) {
+      sideways = -rock.value(rest_body) * rock.inner_radius() / parameters.grazing_cosine;
+      inwards = -rock.inner_radius() * rock.gradient(rest_body);
+    }
     const bool lateral = sideways < compression && inwards.norm() > 0.0;
     if (lateral) compression = sideways;
     journal.push_back({piston.i, piston.j, piston.state});

@@ -50,6 +50,30 @@ TrajectoryLine read_line(ByteReader& in) {
   return line;
 }
 
+void write_failure(ByteWriter& out, const FailedTrajectory& failure) {
+  out.put(failure.source);
+  out.put(failure.run);
+  out.put(failure.time);
+  out.put(failure.position.x());
+  out.put(failure.position.y());
+  out.put(failure.position.z());
+  out.put<std::uint64_t>(failure.reason.size());
+  for (const char c : failure.reason) out.put(c);
+}
+
+FailedTrajectory read_failure(ByteReader& in) {
+  FailedTrajectory failure;
+  failure.source = in.get<std::uint64_t>();
+  failure.run = in.get<std::uint64_t>();
+  failure.time = in.get<double>();
+  failure.position.x() = in.get<double>();
+  failure.position.y() = in.get<double>();
+  failure.position.z() = in.get<double>();
+  failure.reason.resize(in.get<std::uint64_t>());
+  for (char& c : failure.reason) c = in.get<char>();
+  return failure;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> encode_share(const RockfallResult& share) {
@@ -71,13 +95,17 @@ std::vector<std::uint8_t> encode_share(const RockfallResult& share) {
     out.put(sums->sources_converged);
     out.put(sums->sources_at_limit);
   }
+  out.put(share.troubled);
+  out.put(share.redrawn);
+  out.put<std::uint64_t>(share.failures.size());
+  for (const FailedTrajectory& failure : share.failures) write_failure(out, failure);
   return out.take();
 }
 
 RockfallResult decode_share(const std::vector<std::uint8_t>& bytes, const Grid<double>& dem, const GridSpec& tile) {
   if (tile.is_window() && !tile.whole().same_grid(dem.spec())) throw std::invalid_argument("decode_share: a tile of another grid");
   ByteReader in(bytes, tile);
-  RockfallResult share{RockfallStatistics(dem), {}, {}, {}, 0, 1, 0, {}, std::nullopt, std::nullopt};
+  RockfallResult share{RockfallStatistics(dem), {}, {}, {}, 0, 1, 0, {}, std::nullopt, std::nullopt, 0, 0, {}};
   share.statistics.read(in);
   share.lines.resize(in.get<std::uint64_t>());
   for (TrajectoryLine& line : share.lines) line = read_line(in);
@@ -95,6 +123,10 @@ RockfallResult decode_share(const std::vector<std::uint8_t>& bytes, const Grid<d
     sums.sources_converged = in.get<std::uint64_t>();
     sums.sources_at_limit = in.get<std::uint64_t>();
   }
+  share.troubled = in.get<std::uint64_t>();
+  share.redrawn = in.get<std::uint64_t>();
+  share.failures.resize(in.get<std::uint64_t>());
+  for (FailedTrajectory& failure : share.failures) failure = read_failure(in);
   if (!in.at_end()) throw std::runtime_error("rank message: longer than its contents");
   return share;
 }
@@ -104,9 +136,16 @@ RockfallResult join_shares(std::vector<RockfallResult> shares, const RockfallSet
   const std::size_t source_count = shares.front().runs_by_source.size();
   // runouts: each share's in (source, run) order; the whole run's interleaves them source by
   // source, taking each source's runs from the share that simulated it (a source belongs to one
-  // share, whether the shares are MPI ranks' or tiles', and every simulated source has runs).
+  // share, whether the shares are MPI ranks' or tiles', and every simulated source has runs),
+  // less its failed runs, which have no runout.
   std::vector<std::size_t> next_runout(shares.size(), 0);
   std::vector<double> runouts;
+  std::vector<std::uint64_t> failed_runs(source_count, 0);
+  for (const RockfallResult& share : shares) {
+    for (const FailedTrajectory& failure : share.failures) {
+      if (failure.source < source_count) ++failed_runs[failure.source];
+    }
+  }
 
   for (std::uint64_t source = 0; source < source_count; ++source) {
     std::size_t owner = 0;
@@ -114,7 +153,7 @@ RockfallResult join_shares(std::vector<RockfallResult> shares, const RockfallSet
     if (owner == shares.size()) continue;
     const std::vector<double>& from = shares[owner].runouts;
     const std::size_t begin = next_runout[owner];
-    next_runout[owner] += shares[owner].runs_by_source[source];
+    next_runout[owner] += shares[owner].runs_by_source[source] - failed_runs[source];
     if (next_runout[owner] > from.size()) throw std::runtime_error("join_shares: a share lacks runs it owns");
     runouts.insert(runouts.end(), from.begin() + static_cast<std::ptrdiff_t>(begin),
                    from.begin() + static_cast<std::ptrdiff_t>(next_runout[owner]));
@@ -127,6 +166,9 @@ RockfallResult join_shares(std::vector<RockfallResult> shares, const RockfallSet
     for (std::size_t k = 0; k < whole.stop_counts.size(); ++k) whole.stop_counts[k] += share.stop_counts[k];
     whole.trajectories += share.trajectories;
     whole.fragments += share.fragments;
+    whole.troubled += share.troubled;
+    whole.redrawn += share.redrawn;
+    for (auto& failure : share.failures) whole.failures.push_back(std::move(failure));
     for (std::size_t s = 0; s < source_count; ++s) whole.runs_by_source[s] += share.runs_by_source[s];
     if (whole.convergence_sums && share.convergence_sums) {
       ConvergenceSums& sums = *whole.convergence_sums;
@@ -141,6 +183,7 @@ RockfallResult join_shares(std::vector<RockfallResult> shares, const RockfallSet
   std::sort(whole.lines.begin(), whole.lines.end(), [](const TrajectoryLine& a, const TrajectoryLine& b) {
     return a.source_id != b.source_id ? a.source_id < b.source_id : a.run_id < b.run_id;
   });
+  std::sort(whole.failures.begin(), whole.failures.end());
   if (whole.convergence_sums) whole.convergence = convergence_report(*whole.convergence_sums, settings);
   return whole;
 }

@@ -316,4 +316,6 @@ void RockfallStatistics::Recorder::commit(std::uint64_t source) {
   state_->reset();
 }
 
+void RockfallStatistics::Recorder::discard() { state_->reset(); }
+
 }  // namespace talus

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <string>
 
-#include "talus/core/errors.hpp"
 
 namespace talus {
 
@@ -25,7 +24,7 @@ void throw_numerical_failure(double time, const Eigen::Vector3d& position, doubl
   std::snprintf(message, sizeof message,
                 "full rock-fall model: %s at t = %.6g s, centre (%.3f, %.3f, %.3f) m, step %.3g s", reason, time,
                 position.x(), position.y(), position.z(), step);
-  throw NumericalFailure(message);
+  throw StepFailure(message, time, position, step, reason);
 }
 
 }  // namespace talus

@@ -1,9 +1,12 @@
-// A trajectory that fails numerically (issue 16, Deliver 1; docs/rockfall-full.md, section 5,
-// "When a trajectory fails"): the run stops with exit code 3 and writes nothing; its one error
-// line names the source and run and gives the command that reruns that trajectory alone, which
-// fails the same way. --only-source and --only-run select exactly those runs.
+// Trajectories that fail numerically (issue 16, Deliver 1; issue 38, item 7; docs/rockfall-full.md,
+// section 5, "Recovery"): below [run] failure_share the run goes on, records each
+// failure in run.json and a problem line, and its layers say how many trajectories they miss, the
+// same at any thread count; above it the run ends with exit code 3 and writes nothing, and its one
+// error line names the first failure and gives the command that reruns that trajectory alone,
+// which fails the same way. --only-source and --only-run select exactly those runs.
 #include <gtest/gtest.h>
 
+#include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
 #include <fstream>
@@ -13,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run_talus.hpp"
+#include "same_outputs.hpp"
 #include "test_paths.hpp"
 
 namespace talus {
@@ -39,15 +43,25 @@ class RockfallFailure : public ::testing::Test {
  protected:
   void SetUp() override {
     root_ = test::fresh_folder("rockfall_failure");
-    // A guard that hardly any step can pass, without retries: the trajectories fail (a negative
-    // tolerance, which no step passed, is now refused by its range).
-    std::ofstream(root_ / "failing.toml") << "[full]\nguard_tolerance = 1e-300\nmax_retries = 0\n";
+    // A guard that hardly any step that gains energy can pass, without retries or recovery: 5 of
+    // the 54 trajectories fail, the first of them source 0, run 0 (a negative tolerance, which no
+    // step passed, is refused by its range).
+    std::ofstream(root_ / "failing.toml") << "[full]\nguard_tolerance = 1e-300\nmax_retries = 0\nrestarts = 0\n"
+                                             "[run]\nredraws = 0\n";
+  }
+  // A guard that a few steps fail (2 of the 54 trajectories at seed 1), without retries or
+  // recovery, and the failure share given.
+  fs::path some_failing(double failure_share) const {
+    const fs::path path = root_ / ("some_failing_" + std::to_string(failure_share) + ".toml");
+    std::ofstream(path) << "[full]\nguard_tolerance = 1e-4\nmax_retries = 0\nrestarts = 0\n"
+                           "[run]\nredraws = 0\nfailure_share = " << failure_share << "\n";
+    return path;
   }
   void TearDown() override { fs::remove_all(root_); }
   fs::path root_;
 };
 
-TEST_F(RockfallFailure, StopsWritesNothingAndNamesTheCommandThatReproducesIt) {
+TEST_F(RockfallFailure, AboveTheShareStopsWritesNothingAndNamesTheCommandThatReproducesIt) {
   std::vector<std::string> arguments = case_arguments(root_ / "out");
   arguments.insert(arguments.end(), {"--scenario", (root_ / "failing.toml").string()});
   const test::ProgramResult result = test::run_talus(arguments, root_);
@@ -55,6 +69,8 @@ TEST_F(RockfallFailure, StopsWritesNothingAndNamesTheCommandThatReproducesIt) {
   const std::vector<std::string> errors = test::error_lines(result.err);
   ASSERT_EQ(errors.size(), 1u) << result.err;
   const std::string& line = errors.front();
+  EXPECT_NE(line.find(" of 54 trajectories ("), std::string::npos) << line;
+  EXPECT_NE(line.find("failed numerically, more than [run] failure_share = 1 %"), std::string::npos) << line;
   EXPECT_NE(line.find("blow-up not recovered by smaller steps"), std::string::npos) << line;
   EXPECT_NE(line.find("(source 0, run 0)"), std::string::npos) << line;
   EXPECT_NE(line.find("nothing was written"), std::string::npos) << line;
@@ -73,8 +89,72 @@ TEST_F(RockfallFailure, StopsWritesNothingAndNamesTheCommandThatReproducesIt) {
   EXPECT_EQ(again.exit_code, 3) << again.err;
   const std::vector<std::string> again_errors = test::error_lines(again.err);
   ASSERT_EQ(again_errors.size(), 1u) << again.err;
-  EXPECT_EQ(again_errors.front(), line);
+  const auto first = [](const std::string& text) { return text.substr(text.find("the first: ")); };
+  EXPECT_NE(again_errors.front().find(": 1 of 1 trajectories (100 %)"), std::string::npos) << again_errors.front();
+  EXPECT_EQ(first(again_errors.front()), first(line));
   EXPECT_FALSE(fs::exists(root_ / "out"));
+}
+
+// A layer's metadata item (GDAL).
+std::string layer_metadata(const fs::path& tif, const char* key) {
+  GDALAllRegister();
+  GDALDatasetUniquePtr data(GDALDataset::Open(tif.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  const char* value = data ? data->GetMetadataItem(key) : nullptr;
+  return value != nullptr ? value : "";
+}
+
+// Below the share the run goes on: exit code 0, each failure in run.json (source, run, time,
+// place, reason) and in a problem line, the layers without them and saying so (metadata and QGIS
+// abstract), and the same layers at 1 and 2 threads. A share just below the run's fails it.
+TEST_F(RockfallFailure, BelowTheShareTheRunGoesOnRecordsTheFailuresAndTheLayersSayWhatTheyMiss) {
+  std::vector<test::ProgramResult> results;
+  for (const std::string threads : {"1", "2"}) {
+    std::vector<std::string> arguments = case_arguments(root_ / ("threads" + threads));
+    arguments.insert(arguments.end(), {"--scenario", some_failing(50.0).string(), "--threads", threads});
+    results.push_back(test::run_talus(arguments, root_));
+    ASSERT_EQ(results.back().exit_code, 0) << results.back().err;
+  }
+  std::ifstream file(root_ / "threads1" / "run.json");
+  const nlohmann::json record = nlohmann::json::parse(file);
+  const nlohmann::json& recovery = record["recovery"];
+  const std::uint64_t failed = recovery["failed"];
+  ASSERT_GT(failed, 0u);
+  ASSERT_LT(failed, 54u);
+  EXPECT_EQ(record["counts"]["failed_trajectories"], failed);
+  EXPECT_EQ(record["counts"]["trajectories"], 54u - failed);
+  EXPECT_EQ(recovery["failure_share_percent"], 50.0);
+  ASSERT_EQ(recovery["failures"].size(), failed);
+  for (const nlohmann::json& f : recovery["failures"]) {
+    EXPECT_LT(f["source"].get<int>(), 18);
+    EXPECT_LT(f["run"].get<int>(), 3);
+    EXPECT_GT(f["time_s"].get<double>(), 0.0);
+    EXPECT_TRUE(f["x_m"].is_number() && f["y_m"].is_number() && f["z_m"].is_number()) << f;
+    EXPECT_EQ(f["reason"], "blow-up not recovered by smaller steps");
+  }
+  std::size_t problem_lines = 0;
+  std::istringstream out(results.front().out);
+  for (std::string line; std::getline(out, line);) {
+    if (line.rfind("problem: trajectory failed numerically", 0) == 0) ++problem_lines;
+  }
+  EXPECT_EQ(problem_lines, failed) << results.front().out;
+  EXPECT_NE(results.front().out.find(std::to_string(failed) + " of 54 (" ), std::string::npos) << results.front().out;
+  for (const char* layer : {"reach_probability", "energy_max", "deposits"}) {
+    const fs::path tif = root_ / "threads1" / (std::string(layer) + ".tif");
+    EXPECT_EQ(layer_metadata(tif, "TALUS_MISSING_TRAJECTORIES"), std::to_string(failed)) << layer;
+    EXPECT_EQ(layer_metadata(tif, "TALUS_TRAJECTORIES"), "54") << layer;
+    const std::string qmd = test::file_bytes(root_ / "threads1" / (std::string(layer) + ".qmd"));
+    EXPECT_NE(qmd.find("Missing: " + std::to_string(failed) + " of the run&apos;s 54 trajectories"), std::string::npos)
+        << layer;
+  }
+  EXPECT_GT(test::expect_same_rasters(root_ / "threads1", root_ / "threads2"), 5);
+  EXPECT_EQ(test::trajectory_lines(root_ / "threads1"), test::trajectory_lines(root_ / "threads2"));
+
+  const double share = recovery["failed_percent"];
+  std::vector<std::string> arguments = case_arguments(root_ / "above");
+  arguments.insert(arguments.end(), {"--scenario", some_failing(0.5 * share).string()});
+  const test::ProgramResult above = test::run_talus(arguments, root_);
+  EXPECT_EQ(above.exit_code, 3) << above.err;
+  EXPECT_FALSE(fs::exists(root_ / "above"));
 }
 
 // The (source, run) -> runout length (m) of every line of a run's trajectories.gpkg.

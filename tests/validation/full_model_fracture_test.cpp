@@ -288,6 +288,7 @@ TEST(FullModelStepFloor, ACollapsingStepThrowsAtItsFloor) {
   FullModelParameters parameters;
   parameters.guard_tolerance = -1.0;
   parameters.max_retries = 1000;
+  parameters.restarts = 0;  // the floor itself, not the recovery (FullModelRecovery)
   const std::string message = step_failure(parameters);
   ASSERT_NE(message.find("collapsed below its floor"), std::string::npos) << "message: " << message;
   const double step = std::stod(message.substr(message.rfind("step ") + 5));
@@ -306,6 +307,7 @@ TEST(FullModelStepFloor, ACollapsingStepThrowsAtItsFloor) {
 TEST(FullModelStepFloor, StepsStalledFarBelowTheContactsThrow) {
   FullModelParameters parameters;
   parameters.approach_fraction = 1e-6;
+  parameters.restarts = 0;  // the stall itself, not the recovery (FullModelRecovery)
   const std::string message = step_failure(parameters);
   std::printf("stalled steps: %s\n", message.c_str());
   EXPECT_NE(message.find("stalled"), std::string::npos) << "message: " << message;

@@ -1,7 +1,9 @@
 // Where the full model's explicit integration fails (issue 4, Deliver 5): on the stiffest soil
 // class, a contact step far above the stability limit (omega dt = 2 pi time_step_factor > 2)
 // multiplies the rock's energy at every step. Without the guard the run blows up; with it, the
-// guard halves the failing steps and the same run stays within its initial energy.
+// guard halves the failing steps and the same run stays within its initial energy. With no
+// halving allowed, the recovery (docs/rockfall-full.md, section 5) restarts the rock from its last
+// sound state with shorter steps, or, without restarts, the run throws StepFailure.
 #include <cmath>
 #include <cstdio>
 
@@ -11,6 +13,7 @@
 #include "talus/core/errors.hpp"
 #include "talus/rockfall/full_model.hpp"
 #include "talus/rockfall/implicit_shape.hpp"
+#include "talus/rockfall/step_guard.hpp"
 
 namespace talus {
 namespace {
@@ -84,6 +87,46 @@ TEST(FullModelStability, WithTheGuardTheSameRunStaysStable) {
   EXPECT_LT(gain, 0.01 * drop);
   EXPECT_LT(final_gain, 0.01 * drop);
   EXPECT_GT(recorder.final_sample.position.x(), scene.start.position.x() + 1.0);  // it went down the slope
+}
+
+// docs/rockfall-full.md, section 5, "Recovery": the guard may not halve (max_retries 0), so the
+// first contact step of omega dt = 2 pi fails. Without restarts the run throws StepFailure with
+// its reason, time and place; with them it restarts from the last sound state with contact steps
+// a quarter as long (omega dt = pi / 2, stable), finishes, and reports one consistent trajectory:
+// samples in time order, none from the withdrawn steps, and no energy gained.
+TEST(FullModelRecovery, AFailedStepRestartsFromTheLastSoundStateWithShorterSteps) {
+  const StiffDrop scene;
+  FullModelParameters parameters = scene.parameters(true);
+  parameters.max_retries = 0;
+  parameters.restarts = 0;
+  Recorder failing;
+  try {
+    FullModel(parameters).run(scene.ground, scene.rock, scene.start, failing);
+    ADD_FAILURE() << "no step failed";
+  } catch (const StepFailure& failure) {
+    std::printf("without restarts: %s\n", failure.what());
+    EXPECT_EQ(failure.reason, "blow-up not recovered by smaller steps");
+    EXPECT_GT(failure.time, 0.0);
+    EXPECT_LT(failure.position.z(), scene.start.position.z());
+  }
+  EXPECT_EQ(failing.restarts, 0);
+
+  parameters.restarts = 2;
+  Recorder recorder;
+  ASSERT_NO_THROW(FullModel(parameters).run(scene.ground, scene.rock, scene.start, recorder));
+  std::printf("with restarts: %d, %zu samples, stopped at t = %.3g s\n", recorder.restarts, recorder.samples.size(),
+              recorder.final_sample.time);
+  EXPECT_GE(recorder.restarts, 1);
+  EXPECT_LE(recorder.restarts, 2);
+  EXPECT_EQ(recorder.stops, 1);
+  for (std::size_t k = 1; k < recorder.samples.size(); ++k) {
+    EXPECT_GE(recorder.samples[k].time, recorder.samples[k - 1].time) << "sample " << k;
+  }
+  const double m = scene.mass(parameters);
+  const double drop = m * kG * 2.0;  // J
+  EXPECT_LT(scene.largest_gain(recorder, m), 0.01 * drop);
+  EXPECT_EQ(recorder.stop, StopReason::at_rest);
+  EXPECT_GT(recorder.final_sample.position.x(), scene.start.position.x() + 0.5);  // down the slope, to rest
 }
 
 }  // namespace

@@ -63,6 +63,7 @@ class Recorder final : public TrajectoryObserver {
     stop = reason;
     ++stops;
   }
+  void on_restart(double) override { ++restarts; }
   double friction_loss() const {
     double sum = 0.0;
     for (const RecordedLoss& loss : losses) sum += loss.friction;
@@ -78,6 +79,7 @@ class Recorder final : public TrajectoryObserver {
   std::vector<RecordedLoss> losses;
   TrajectorySample final_sample;
   StopReason stop = StopReason::max_time;
+  int restarts = 0;  // the full model's restarts after failed steps
   int stops = 0;
 };
 

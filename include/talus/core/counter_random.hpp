@@ -21,10 +21,17 @@ std::uint64_t stream_key(std::uint64_t seed, std::uint64_t source, std::uint64_t
 // Stateless 64-bit mix of four words: splitmix64(stream_key(seed, source, run) ^ counter).
 std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t source, std::uint64_t run, std::uint64_t counter);
 
-// A stream of draws for one (seed, source, run); the counter advances by one per draw.
+// The key of a fresh stream of the same run (seed, source, run): `draw` 0 is stream_key's, each
+// later one a new key, for a run drawn again after a numerical failure (docs/rockfall-full.md,
+// section 5, "Recovery").
+std::uint64_t stream_key(std::uint64_t seed, std::uint64_t source, std::uint64_t run, std::uint64_t draw);
+
+// A stream of draws for one (seed, source, run), and its later draws; the counter advances by one
+// per draw.
 class CounterRandom {
  public:
-  CounterRandom(std::uint64_t seed, std::uint64_t source, std::uint64_t run) : key_(stream_key(seed, source, run)) {}
+  CounterRandom(std::uint64_t seed, std::uint64_t source, std::uint64_t run, std::uint64_t draw = 0)
+      : key_(stream_key(seed, source, run, draw)) {}
   // counter_hash(seed, source, run, counter), with the stream's key computed once.
   std::uint64_t next_bits() { return splitmix64(key_ ^ counter_++); }
   // [0, 1): the top 53 bits as the mantissa.

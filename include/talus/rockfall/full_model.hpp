@@ -32,7 +32,11 @@ struct FullModelParameters {
   double rolling_resistance = 1.0;    // multiplier of the lithology's rolling friction (-): 1 = the
                                       // table's rolling friction, as in fast mode; 0 = pure rolling
   bool guard = true;                  // detect blow-up and retry with smaller steps
-  int max_retries = 8;                // halvings of a step before the run fails (exit code 3)
+  int max_retries = 8;                // halvings of a step before it counts as failed
+  int restarts = 2;                   // a failed step (collapse, blow-up, stall) restarts the rock from its last
+                                      // sound state, at least kCheckpointSteps back, with contact steps a quarter
+                                      // as long; this many times per rock before NumericalFailure
+                                      // (docs/rockfall-full.md, section 5, "Recovery")
   // Added by the implementation (docs/rockfall-full.md, section 8):
   double approach_fraction = 0.25;    // per step, the rock's material at a piston top closes on it (or
                                       // leaves it) by at most this fraction of the spacing beyond its gap (-)

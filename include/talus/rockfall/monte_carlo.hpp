@@ -73,17 +73,23 @@ struct RockfallSettings {
   SourceShare share;                    // the whole run unless split among MPI ranks or tiles
   std::optional<TileBounds> tile;       // a tile's run: its halo's edge; a trajectory with a
                                         // sample beyond it stops there (StopReason::tile_edge)
+  int redraws = 2;                      // a run that failed numerically is drawn again from a fresh
+                                        // stream (CounterRandom's `draw`) up to this many times, then
+                                        // recorded as failed (docs/rockfall-full.md, section 5, "Recovery")
 };
 
-// A trajectory that failed numerically (NumericalFailure), with the source and run (0-based)
-// that reproduce it through RockfallSettings::only_source and only_run.
-class TrajectoryFailure : public NumericalFailure {
- public:
-  TrajectoryFailure(const std::string& what, std::uint64_t failed_source, std::uint64_t failed_run)
-      : NumericalFailure(what + " (source " + std::to_string(failed_source) + ", run " + std::to_string(failed_run) + ")"),
-        source(failed_source),
-        run(failed_run) {}
-  std::uint64_t source, run;
+// A run that failed numerically on every draw (docs/rockfall-full.md, section 5, "Recovery"): it
+// adds nothing to the statistics, the lines or the runouts. Its source and run (0-based) rerun it
+// through RockfallSettings::only_source and only_run; time, place and reason are its last draw's.
+struct FailedTrajectory {
+  std::uint64_t source = 0, run = 0;
+  double time = 0;                                     // s since release
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // m, the rock's centre
+  std::string reason;                                  // the failure's own words
+  // (source, run) order, that of a whole run's runs.
+  bool operator<(const FailedTrajectory& other) const {
+    return source != other.source ? source < other.source : run < other.run;
+  }
 };
 
 // How far a run's envelope has converged (envelope_convergence.hpp). The whole run's change
@@ -124,6 +130,12 @@ struct RockfallResult {
   std::vector<std::uint64_t> runs_by_source;    // runs simulated per source (0: not selected)
   std::optional<ConvergenceReport> convergence; // none with only_run (one run per source)
   std::optional<ConvergenceSums> convergence_sums;  // what `convergence` is computed from
+  // The recovery (docs/rockfall-full.md, section 5): runs whose first draw met a failed step (the
+  // failures without recovery), runs drawn again from a fresh stream, and those that failed on
+  // every draw, sorted by (source, run). `trajectories` counts the others.
+  std::uint64_t troubled = 0;
+  std::uint64_t redrawn = 0;
+  std::vector<FailedTrajectory> failures;
 };
 
 // One release location: a cell centre (jittered inside its cell) or a point, with the
@@ -139,9 +151,9 @@ std::vector<ReleaseSource> release_sources(const ReleaseSet& release);
 
 // Every run of every source (or those only_source and only_run select, of settings.share): in batches per source,
 // each batch's runs shared among the threads, the next batch of a source decided (auto_runs)
-// from that source's envelope once its batch is done. A run that fails
-// numerically ends them all: the earliest failing run in (source, run) order is thrown as a
-// TrajectoryFailure once every thread has stopped, and nothing is returned.
+// from that source's envelope once its batch is done. A run that fails numerically
+// (NumericalFailure) is drawn again from a fresh stream up to settings.redraws times, and then
+// recorded in RockfallResult::failures; the others go on.
 RockfallResult run_rockfall(const GroundModel& ground, const std::vector<ReleaseSource>& sources,
                             const TrajectoryModel& model, const RockfallSettings& settings, Progress* progress);
 

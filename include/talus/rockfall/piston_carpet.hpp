@@ -73,7 +73,7 @@ class PistonCarpet {
 
  private:
   Piston make_piston(std::int64_t i, std::int64_t j) const;
-  const PerturbedGround& ground_;
+  const PerturbedGround* ground_;  // a pointer, so that a run can keep a copy of its carpet and restore it
   double spacing_;
   CarpetWindow window_;
   std::vector<Piston> pistons_;   // window_.columns() x window_.rows(), row-major in j

@@ -66,6 +66,8 @@ struct PistonContactParameters {
   double grazing_cosine = 0.2;           // floor of |g . axis| in the force's 1 / |g . axis| (-)
   double bisection_tolerance = 1e-9;     // m along the piston axis
   int bisection_iterations = 40;         // at most
+  bool bound_every_compression = false;  // the recovery (docs/rockfall-full.md, section 5): the bound of
+                                         // section 3.5 under every rock, not only under cut faces
 };
 
 // The pistons a press tests: the valid ones of a lattice window inside the carpet's, in lattice
@@ -82,7 +84,8 @@ struct PistonRange {
 // appended to `journal` with its old state. `response` is overwritten (its touches' storage is
 // reused). Under a rock with cut faces on its surface (a fragment, RigidRock::has_cut_faces) a
 // piston's compression is at most RigidRock::depth_inside at its rest top over grazing_cosine,
-// which keeps it continuous at the cut faces' sharp edges (docs/rockfall-full.md, section 3.5).
+// which keeps it continuous at the cut faces' sharp edges (docs/rockfall-full.md, section 3.5);
+// with bound_every_compression, under every rock.
 void press_carpet(PistonCarpet& carpet, const PistonRange& range, const RigidRock& rock,
                   const Eigen::Vector3d& centre, const Eigen::Matrix3d& rotation,
                   const PistonContactParameters& parameters, const std::vector<PistonTouch>& previous,

@@ -77,6 +77,9 @@ class RockfallStatistics::Recorder final : public TrajectoryObserver {
   // Adds the trajectory, released from release source `source` (0-based, as run_rockfall numbers
   // them), and resets the recorder for the next one.
   void commit(std::uint64_t source);
+  // Forgets the trajectory recorded so far (one that failed numerically adds nothing) and resets
+  // the recorder for the next one.
+  void discard();
 
  private:
   struct Passage;

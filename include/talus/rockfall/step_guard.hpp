@@ -6,8 +6,12 @@
 // Equations: docs/rockfall-full.md, section 5.
 #pragma once
 
+#include <string>
+#include <utility>
+
 #include <Eigen/Core>
 
+#include "talus/core/errors.hpp"
 #include "talus/rockfall/rigid_rock.hpp"
 
 namespace talus {
@@ -26,7 +30,25 @@ struct StepEnergy {
 bool step_is_sound(const RockState& after, const StepEnergy& before, const StepEnergy& after_energy,
                    double tolerance, double floor);
 
-// Throws NumericalFailure with a one-line message naming the time (s), the centre (m) and the
+// A step that could not be made sound (docs/rockfall-full.md, section 5): its one-line message
+// names the reason, the time, the centre and the shortest step tried; the fields keep them for
+// the run's record of failed trajectories (run.json, "failures").
+class StepFailure : public NumericalFailure {
+ public:
+  StepFailure(const std::string& message, double failed_time, const Eigen::Vector3d& failed_position, double failed_step,
+              std::string failed_reason)
+      : NumericalFailure(message),
+        time(failed_time),
+        position(failed_position),
+        step(failed_step),
+        reason(std::move(failed_reason)) {}
+  double time;               // s since release
+  Eigen::Vector3d position;  // m, the rock's centre
+  double step;               // s, the shortest step tried
+  std::string reason;        // e.g. "the step collapsed below its floor"
+};
+
+// Throws StepFailure with a one-line message naming the time (s), the centre (m) and the
 // shortest step tried (s).
 [[noreturn]] void throw_numerical_failure(double time, const Eigen::Vector3d& position, double step,
                                           const char* reason);

@@ -50,6 +50,11 @@ class TrajectoryObserver {
   // block's first part) to its on_stop, then each other fragment from its on_fragment to its
   // on_stop. Observers that follow one rock only can ignore it (the default does nothing).
   virtual void on_fragment([[maybe_unused]] const TrajectorySample& start) {}
+  // The model restarted the rock from its last sound state after a step failed at `time` (s)
+  // (full mode, docs/rockfall-full.md, section 5, "Recovery"). What it had computed since that
+  // state was never reported, so the reports stay one consistent trajectory; this call only
+  // says that it happened (the default does nothing).
+  virtual void on_restart([[maybe_unused]] double time) {}
 };
 
 }  // namespace talus

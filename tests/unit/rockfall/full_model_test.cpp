@@ -141,8 +141,8 @@ TEST(FullModel, LossesArePositiveAndUnderTheRock) {
   EXPECT_GT(recorder.deformation_loss(), 0.0);
 }
 
-// With no halving allowed, a step far beyond the stability limit fails with a message that names
-// the time, the centre and the step.
+// With no halving and no restart allowed, a step far beyond the stability limit fails with a
+// message that names the time, the centre and the step.
 TEST(FullModel, UnrecoverableBlowUpThrowsNumericalFailure) {
   const GroundModel model = plane(0.0, full_model_scenes::talus_soil());
   const PerturbedGround ground(model, nullptr);
@@ -151,6 +151,7 @@ TEST(FullModel, UnrecoverableBlowUpThrowsNumericalFailure) {
   parameters.approach_fraction = 4.0;
   parameters.max_flight_step = 0.1;
   parameters.max_retries = 0;
+  parameters.restarts = 0;
   Recorder recorder;
   try {
     FullModel(parameters).run(ground, full_model_scenes::sphere(1.0),

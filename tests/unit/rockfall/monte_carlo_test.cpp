@@ -1,16 +1,21 @@
 // Tests of run_rockfall's batches (monte_carlo.hpp, envelope_convergence.hpp): --runs auto gives
 // each source min_runs x 2^k runs, stops a source when its maps have converged, is the same for
 // any thread count, and run k of source s is the same trajectory whatever the number of runs, so
-// an auto source that ends at N runs has the layers of a fixed run of N.
+// an auto source that ends at N runs has the layers of a fixed run of N. The recovery
+// (docs/rockfall-full.md, section 5): a run that fails numerically is drawn again from a fresh
+// stream, and one that fails on every draw is recorded and adds nothing, for any thread count.
 #include "talus/rockfall/monte_carlo.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include <gtest/gtest.h>
 
 #include "../../validation/synthetic_ground.hpp"
 #include "talus/rockfall/fast_bounce.hpp"
+#include "talus/rockfall/step_guard.hpp"
 
 namespace talus {
 namespace {
@@ -129,6 +134,114 @@ TEST_F(MonteCarloBatches, OneRunPerSourceIsNotTested) {
   EXPECT_FALSE(result.convergence.has_value());
   EXPECT_EQ(result.trajectories, 3u);
   EXPECT_EQ(result.runs_by_source, (std::vector<std::uint64_t>{1, 1, 1}));
+}
+
+// Fast bounce, except that a draw `fails` decides fails numerically at its stop, after it has
+// reported its whole path: what the recorder got must be forgotten.
+class FailingModel final : public TrajectoryModel {
+ public:
+  using Rule = bool (*)(const Rock&, const RigidBodyState&);
+  explicit FailingModel(Rule fails) : fails_(fails) {}
+  StopReason run(const PerturbedGround& ground, const Rock& rock, RigidBodyState start,
+                 TrajectoryObserver& observer) const override {
+    if (!fails_(rock, start)) return FastBounce().run(ground, rock, start, observer);
+    FailAtStop failing(observer);
+    return FastBounce().run(ground, rock, start, failing);
+  }
+
+ private:
+  class FailAtStop final : public TrajectoryObserver {
+   public:
+    explicit FailAtStop(TrajectoryObserver& to) : to_(to) {}
+    void on_sample(const TrajectorySample& sample) override { to_.on_sample(sample); }
+    void on_energy_loss(double x, double y, double friction, double deformation) override {
+      to_.on_energy_loss(x, y, friction, deformation);
+    }
+    void on_stop(const TrajectorySample& last, StopReason) override {
+      throw StepFailure("test failure", last.time, last.position, 1e-9, "the test's failure");
+    }
+
+   private:
+    TrajectoryObserver& to_;
+  };
+  Rule fails_;
+};
+
+class MonteCarloRecovery : public MonteCarloBatches {
+ protected:
+  RockfallResult run_with(const FailingModel& model, const RockfallSettings& settings) const {
+    return run_rockfall(ground_, sources_, model, settings, nullptr);
+  }
+};
+
+// Source 1 (y = -75 m) fails on every draw: its runs are recorded with the failure's reason, time
+// and place after settings.redraws fresh draws, and the run goes on. The layers are exactly those
+// of sources 0 and 2 alone, whose runs draw the same numbers as in the whole run.
+TEST_F(MonteCarloRecovery, ARunThatFailsOnEveryDrawIsRecordedAndAddsNothing) {
+  const FailingModel model([](const Rock&, const RigidBodyState& start) { return std::abs(start.position.y() + 75.0) < 10.0; });
+  RockfallSettings settings = settings_;
+  settings.runs_per_source = 6;
+  const RockfallResult result = run_with(model, settings);
+  ASSERT_EQ(result.failures.size(), 6u);
+  for (std::uint64_t k = 0; k < 6; ++k) {
+    const FailedTrajectory& f = result.failures[k];
+    EXPECT_EQ(f.source, 1u);
+    EXPECT_EQ(f.run, k);
+    EXPECT_EQ(f.reason, "the test's failure");
+    EXPECT_GT(f.time, 0.0);
+    EXPECT_GT(f.position.x(), 15.0);  // where it stopped, down the slope
+  }
+  EXPECT_EQ(result.troubled, 6u);
+  EXPECT_EQ(result.redrawn, 6u);  // each drawn again, settings.redraws = 2 times
+  EXPECT_EQ(result.trajectories, 12u);
+  EXPECT_EQ(result.statistics.rocks(), 12u);
+  EXPECT_EQ(result.runouts.size(), 12u);
+  EXPECT_EQ(result.runs_by_source, (std::vector<std::uint64_t>{6, 6, 6}));
+
+  RockfallSettings first = settings, last = settings;
+  first.only_source = 0;
+  last.only_source = 2;
+  RockfallResult alone = run(first);
+  alone.statistics.merge(run(last).statistics);
+  expect_same_layers(result.statistics.layers(), alone.statistics.layers());
+}
+
+// Draws whose rock came out larger than the nominal 1 m fail (about half): without redraws they
+// are the failures; with two, the runs drawn again from fresh streams mostly pass and a few fail on
+// all three draws. Failures, layers and runouts are the same at 1 and 3 threads.
+TEST_F(MonteCarloRecovery, FreshDrawsMendMostFailuresTheSameWayForAnyThreadCount) {
+  const FailingModel model([](const Rock& rock, const RigidBodyState&) { return rock.axes.x() > 1.0; });
+  RockfallSettings settings = settings_;
+  settings.runs_per_source = 16;
+  settings.redraws = 0;
+  const RockfallResult without = run_with(model, settings);
+  EXPECT_EQ(without.failures.size(), without.troubled);
+  EXPECT_EQ(without.redrawn, 0u);
+  EXPECT_GT(without.failures.size(), 10u);
+  EXPECT_EQ(without.trajectories + without.failures.size(), 48u);
+
+  settings.redraws = 2;
+  std::vector<RockfallResult> results;
+  for (const int threads : {1, 3}) {
+    settings.threads = threads;
+    results.push_back(run_with(model, settings));
+  }
+  const RockfallResult& with = results.front();
+  std::printf("failed without redraws %zu of 48, with two %zu\n", without.failures.size(), with.failures.size());
+  EXPECT_EQ(with.troubled, without.troubled);  // the first draws are the same
+  EXPECT_EQ(with.redrawn, without.troubled);
+  EXPECT_LT(with.failures.size(), without.failures.size() / 2);
+  EXPECT_EQ(with.trajectories + with.failures.size(), 48u);
+  EXPECT_EQ(with.statistics.rocks(), with.trajectories);
+  const RockfallResult& other = results.back();
+  ASSERT_EQ(with.failures.size(), other.failures.size());
+  for (std::size_t k = 0; k < with.failures.size(); ++k) {
+    EXPECT_EQ(with.failures[k].source, other.failures[k].source);
+    EXPECT_EQ(with.failures[k].run, other.failures[k].run);
+    EXPECT_EQ(with.failures[k].time, other.failures[k].time);
+  }
+  expect_same_layers(with.statistics.layers(), other.statistics.layers());
+  EXPECT_EQ(with.runouts, other.runouts);
 }
 
 }  // namespace

@@ -31,8 +31,9 @@ struct LayerDescription {
 // <layer>.qmd (title and abstract for QGIS).
 //
 // Metadata keys the writer also reads: TALUS_PROCESS ("rock fall", "mud flow") ends each
-// layer's title, so the two processes' layers of one quantity have distinct titles, and
-// TALUS_SCENARIO goes into each abstract.
+// layer's title, so the two processes' layers of one quantity have distinct titles,
+// TALUS_SCENARIO goes into each abstract, and so does TALUS_MISSING_TRAJECTORIES, when it is not
+// "0", with TALUS_TRAJECTORIES: the trajectories a rock fall lost to numerical failures.
 class LayerWriter {
  public:
   // metadata: written into every layer (TALUS_VERSION is added). The output folder is checked
@@ -42,6 +43,8 @@ class LayerWriter {
   LayerWriter(const LayerWriter&) = delete;
   LayerWriter& operator=(const LayerWriter&) = delete;
 
+  // Sets one metadata item of the layers added after this call.
+  void set_metadata(const std::string& key, const std::string& value) { metadata_[key] = value; }
   // Writes values (nodata where invalid per the grid's spec) as a COG + its QML style and QMD.
   void add(const Grid<float>& values, const LayerDescription& layer);
   // Where a non-raster file of the set (run.json, a GeoPackage) is written before the commit;
