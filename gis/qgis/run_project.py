@@ -25,6 +25,7 @@ import json
 import os
 import shutil
 import sys
+import time
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"  # no .aux.xml beside the layers QGIS reads
@@ -198,12 +199,11 @@ CREDIT_KEYS = ("SOURCE", "COPYRIGHT", "TIFFTAG_COPYRIGHT", "ATTRIBUTION", "CREDI
 NORTH_ARROW = "arrows/NorthArrow_02.svg"  # one of QGIS's own SVG symbols
 
 
-def credits_of(inputs):
-    """The data credits the inputs carry in their metadata (SOURCE, COPYRIGHT, ...), each once,
-    in the order of the inputs; the sample scene's DEM carries its licence's credit this way."""
+def credits_of(paths):
+    """The data credits the input files at `paths` carry in their metadata (SOURCE, COPYRIGHT,
+    ...), each once, in order; the sample scene's DEM carries its licence's credit this way."""
     found = []
-    for entry in inputs.values():
-        path = entry.get("path", "") if isinstance(entry, dict) else ""
+    for path in paths:
         dataset = gdal.OpenEx(path) if path and os.path.exists(path) else None
         if dataset is None:
             continue
@@ -215,27 +215,32 @@ def credits_of(inputs):
     return found
 
 
-def page_facts(out, process, crs):
+def page_facts(out, process, crs, dem_path):
     """The lines every page of a run carries: what made it (software, version, commit, date),
-    what it shows (process, scenario, mode), the CRS, and the data credits of its inputs, read
-    from run.json (or study.json) in OUT."""
+    what it shows (process, scenario or study file, mode), the CRS, and the data credits of its
+    inputs, read from run.json (or study.json) in OUT and from the inputs' metadata."""
     record_path = os.path.join(out, "study.json" if process == "study" else "run.json")
     record = {}
     if os.path.exists(record_path):
         with open(record_path, encoding="utf-8") as file:
             record = json.load(file)
-    version = record.get("version", "")
+    version = record.get("version") or record.get("talus_version", "")
     commit = record.get("git_commit", "")[:7]
     when = (record.get("finished_utc") or record.get("started_utc") or "")[:16].replace("T", " ")
+    if not when and os.path.exists(record_path):
+        when = time.strftime("%Y-%m-%d %H:%M", time.gmtime(os.path.getmtime(record_path)))
     made = f"Talus {version}" + (f" ({commit})" if commit else "") + (f", run {when} UTC" if when else "")
     inputs = record.get("inputs", {})
+    paths = [dem_path] + [e.get("path", "") for e in inputs.values() if isinstance(e, dict)]
     scenario = inputs.get("scenario", {}).get("path", "") if isinstance(inputs.get("scenario"), dict) else ""
+    scenario = scenario or record.get("study", "")
     shown = {"rockfall": "Rock fall", "mudflow": "Mud flow", "study": "Study"}[process]
     mode = record.get("parameters", {}).get("run", {}).get("mode", "") if process == "rockfall" else ""
     what = shown + (f", {mode} mode" if mode else "") + \
-        (f", scenario {os.path.basename(scenario)}" if scenario else ", default parameters")
+        (f", {'study' if process == 'study' else 'scenario'} {os.path.basename(scenario)}" if scenario
+         else ", default parameters")
     crs_text = f"CRS: {crs.description()} ({crs.authid()})" if crs.isValid() else "CRS: none"
-    credits = credits_of(inputs) if inputs else []
+    credits = credits_of(paths)
     return [f"{what}. {crs_text}. {made}.", "Data: " + "; ".join(credits) if credits else ""]
 
 
@@ -280,6 +285,8 @@ def page(project, title, legend_layers, map_layers, extent, facts):
         if layer.type() == layer.RasterLayer:
             QgsMapLayerLegendUtils.setLegendNodeUserLabel(node, 0, band_heading(layer.source()))
             QgsLegendRenderer.setNodeLegendStyle(node, QgsLegendStyle.Hidden)  # the band heading names it
+        elif layer.name().startswith("Hazard zones"):
+            node.setCustomProperty("legend/title-label", "Hazard degree")  # the page's title says the rest
     for node in root.findLayers():
         legend.model().refreshLayerLegend(node)
     legend.setTitle("")
@@ -351,7 +358,7 @@ def add_raster(project, group, path, name, visible, layers):
     layers[name] = (layer, path)
 
 
-def finish(project, out, process, base, temporary_hillshade, quicklooks):
+def finish(project, out, process, dem_path, base, temporary_hillshade, quicklooks):
     """Writes the quicklooks ([(layer, path, base layers)]), the report page of the first of them
     (quicklook/report.pdf, and the layout "Report" in the project) and the project, renaming
     each when complete; the project names the hillshade by its final path, so it is renamed
@@ -359,7 +366,7 @@ def finish(project, out, process, base, temporary_hillshade, quicklooks):
     quicklook_dir = os.path.join(out, ".quicklook.part")
     shutil.rmtree(quicklook_dir, ignore_errors=True)
     os.makedirs(quicklook_dir)
-    facts = page_facts(out, process, project.crs())
+    facts = page_facts(out, process, project.crs(), dem_path)
     keep = []
     for name, (layer, path), base_layers in quicklooks:
         keep.append(quicklook(project, layer, base_layers, reached_extent(path), facts,
@@ -395,15 +402,18 @@ def build_study(out, dem_path):
     layers = {}
     hazard = root.addGroup("Hazard")
     zones_path = os.path.join(out, "hazard", "hazard_zones.gpkg")
+    zones = None
     if os.path.exists(zones_path):
         zones = QgsVectorLayer(zones_path + "|layername=hazard_zones", "Hazard zones", "ogr")  # loads its .qml
         if zones.isValid():
             project.addMapLayer(zones, False)
-            hazard.addLayer(zones).setItemVisibilityChecked(False)
+            hazard.addLayer(zones)
+        else:
+            zones = None
     for name in ["hazard", "hazard_rockfall", "hazard_mudflow"]:
         path = os.path.join(out, "hazard", name + ".tif")
         if os.path.exists(path):
-            add_raster(project, hazard, path, name, name == "hazard", layers)
+            add_raster(project, hazard, path, name, name == "hazard" and zones is None, layers)
     for process, entry in study.get("region", {}).items():
         group = root.addGroup(f"Region: {PROCESS_WORDS[process].lower()}, envelope of its scenarios")
         for name in entry["layers"]:
@@ -429,8 +439,14 @@ def build_study(out, dem_path):
                            layers)
     project.addMapLayer(base, False)
     root.addLayer(base)
-    quicklooks = [("hazard", layers["hazard"], [base])] if "hazard" in layers else []
-    finish(project, out, "study", base, temporary_hillshade, quicklooks)
+    # The study's page shows the generalised zones, named by degree; the raw cells where none exist.
+    if "hazard" in layers and zones is not None:
+        title = layers["hazard"][0].name()
+        zones.setName("Hazard zones: " + title[0].lower() + title[1:])
+        quicklooks = [("hazard", (zones, layers["hazard"][1]), [base])]
+    else:
+        quicklooks = [("hazard", layers["hazard"], [base])] if "hazard" in layers else []
+    finish(project, out, "study", dem_path, base, temporary_hillshade, quicklooks)
 
 
 def build(out, process, dem_path, release_path):
@@ -473,7 +489,7 @@ def build(out, process, dem_path, release_path):
 
     release = [v for v, _ in vectors if v.name() == "Release"]
     quicklooks = [(name, layers[name], release + [base]) for name in QUICKLOOKS[process] if name in layers]
-    finish(project, out, process, base, temporary_hillshade, quicklooks)
+    finish(project, out, process, dem_path, base, temporary_hillshade, quicklooks)
 
 
 def main():

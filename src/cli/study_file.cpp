@@ -145,9 +145,21 @@ Study read_study(const std::filesystem::path& file) {
     const toml::table* hazard = hazard_node->as_table();
     if (hazard == nullptr) throw InputError(name + ": 'hazard' must be a table, [hazard]");
     for (const auto& [key, node] : *hazard) {
-      if (key.str() != "rockfall_probability") {
-        throw InputError(name + ": [hazard]: unknown key '" + std::string(key.str()) + "' (rockfall_probability)");
+      if (key.str() != "rockfall_probability" && key.str() != "minimum_zone_m2" && key.str() != "smooth_zones") {
+        throw InputError(name + ": [hazard]: unknown key '" + std::string(key.str()) +
+                         "' (rockfall_probability, minimum_zone_m2, smooth_zones)");
       }
+    }
+    if (const toml::node* area = hazard->get("minimum_zone_m2")) {
+      const std::optional<double> value = area->is_number() ? area->value<double>() : std::nullopt;
+      if (!value || !(*value >= 0.0 && *value <= 1e6)) {
+        throw InputError(name + ": [hazard] minimum_zone_m2: expected a number of 0-1000000 m2");
+      }
+      study.zones.minimum_area_m2 = *value;
+    }
+    if (const toml::node* smooth = hazard->get("smooth_zones")) {
+      if (!smooth->is_boolean()) throw InputError(name + ": [hazard] smooth_zones: must be true or false");
+      study.zones.smooth = smooth->as_boolean()->get();
     }
     const std::string choice = text_key(*hazard, "rockfall_probability", name + ": [hazard]", false);
     if (!choice.empty() && choice != "reach" && choice != "onset") {

@@ -12,6 +12,7 @@
 
 #include <toml++/toml.h>
 
+#include "talus/gis/hazard_zones_writer.hpp"
 #include "talus/gis/scene.hpp"
 
 namespace talus::cli {
@@ -41,6 +42,7 @@ struct Study {
   // [hazard] rockfall_probability: "reach" (default), a rock fall's return period at a cell is the
   // scenario's over the cell's reach probability; "onset", the scenario's wherever a rock reaches.
   bool rockfall_reach = true;
+  gis::ZoneGeneralisation zones;  // [hazard] minimum_zone_m2 and smooth_zones (docs/study.md, "Hazard zones")
   gis::SceneInputs inputs;  // dem, lithology, vegetation, materials, crs
   std::vector<StudyScenario> scenarios;  // in the file's order: rock falls, then mud flows
 };

@@ -108,7 +108,7 @@ nlohmann::ordered_json write_study_hazard(const Study& study, const StudyChoices
   add(both, "hazard", "", rockfall.has_value());
   if (rockfall) add(*rockfall, "hazard_rockfall", ", rock fall", true);
   if (mudflow) add(*mudflow, "hazard_mudflow", ", mud flow", false);
-  gis::add_hazard_zones(writer, both, matrix);
+  const gis::ZoneCounts zones = gis::add_hazard_zones(writer, both, matrix, study.zones);
   nlohmann::ordered_json probabilities = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < matrix.probabilities.size(); ++k) {
     probabilities.push_back({{"name", matrix.probabilities[k]},
@@ -118,7 +118,11 @@ nlohmann::ordered_json write_study_hazard(const Study& study, const StudyChoices
   }
   const nlohmann::ordered_json entry = {{"guideline", matrix.guideline}, {"source", matrix.source},
                                         {"rockfall_probability", study.rockfall_reach ? "reach" : "onset"},
-                                        {"probabilities", probabilities}, {"maps", maps}};
+                                        {"probabilities", probabilities}, {"maps", maps},
+                                        {"zones", {{"minimum_area_m2", study.zones.minimum_area_m2},
+                                                   {"smoothed", study.zones.smooth},
+                                                   {"cell_patches", zones.cell_patches},
+                                                   {"polygons", zones.zones}}}};
   record.set("hazard", entry);
   record.write(writer.temporary_path("run.json"));
   writer.commit();
@@ -127,7 +131,10 @@ nlohmann::ordered_json write_study_hazard(const Study& study, const StudyChoices
     line += printf_text(" %s %.3f km2,", d["name"].get<std::string>().c_str(), d["area_km2"].get<double>());
   }
   line.pop_back();
-  output.say(line + "; in " + (choices.out / "hazard").string() + " (hazard.tif, hazard_zones.gpkg)");
+  output.say(line + "; in " + (choices.out / "hazard").string() + " (hazard.tif, hazard_zones.gpkg: " +
+             std::to_string(zones.zones) + " zones of at least " + printf_text("%g", study.zones.minimum_area_m2) +
+             " m2 from " + std::to_string(zones.cell_patches) + " patches of cells" +
+             (study.zones.smooth ? ", smoothed)" : ")"));
   return entry;
 }
 

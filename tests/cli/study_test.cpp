@@ -179,7 +179,7 @@ TEST(Study, TheHazardMapTakesEachCellsHighestDegreeOverTheScenarios) {
                          "/hazard.tif 'Hazard degree (foen-2016; rock fall per cell: return period / reach probability)' " + hazard +
                          "/hazard_mudflow.tif 'Hazard degree, mud flow (foen-2016)'").c_str()),
             0);
-  EXPECT_EQ(std::system((qgis + "/check_zones_in_qgis.py EPSG:31287 " + hazard + "/hazard_zones.gpkg").c_str()), 0);
+  EXPECT_EQ(std::system((qgis + "/check_zones_in_qgis.py EPSG:31287 " + hazard + "/hazard_zones.gpkg 400").c_str()), 0);
 
   // issue 19, item 2: the region's layers are the envelope of each process's scenarios.
   for (const char* name : {"energy_max", "reach_probability", "intensity"}) {

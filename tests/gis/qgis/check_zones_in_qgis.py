@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """Opens a study's hazard_zones.gpkg in QGIS as a user would and checks that it comes up styled.
 
-usage: check_zones_in_qgis.py CRS GPKG
+usage: check_zones_in_qgis.py CRS GPKG [MINIMUM_AREA_M2]
 
 CRS is the expected layer CRS as an authority id (EPSG:31287). The GeoPackage opens as a valid
 polygon layer; the .qml beside it was applied: a categorized renderer on `degree` with exactly the
 style's categories, values, labels and fill colours; every feature's degree has a category and
 its `name` is that category's degree name (the style's label starts with it); the CRS is the
-expected one. Prints one line per problem; exit 0 when none.
+expected one; residual hazard is hatched; no zone is smaller than MINIMUM_AREA_M2 (when given).
+Prints one line per problem; exit 0 when none.
 Runs on Debian's /usr/bin/python3 (python3-qgis).
 """
 import os
@@ -17,6 +18,7 @@ import xml.etree.ElementTree as ET
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 from qgis.core import QgsApplication, QgsVectorLayer, QgsWkbTypes  # noqa: E402
+from qgis.PyQt.QtCore import Qt  # noqa: E402
 
 
 def style_of(qml_path):
@@ -31,7 +33,7 @@ def style_of(qml_path):
     return renderer.get("attr"), categories
 
 
-def problems_of(path, crs):
+def problems_of(path, crs, minimum_area):
     name = os.path.basename(path)
     layer = QgsVectorLayer(path, name, "ogr")
     if not layer.isValid():
@@ -60,18 +62,26 @@ def problems_of(path, crs):
             problems.append(f"{name}: feature {feature.id()} (degree {value}) is in no category")
         elif not labels[value].startswith(str(feature["name"]) + " "):
             problems.append(f"{name}: feature {feature.id()} is named {feature['name']}, its category {labels[value]}")
+    residual = [c for c in renderer.categories() if str(c.label()).startswith("residual")]
+    for category in residual:
+        if category.symbol().symbolLayer(0).brushStyle() == Qt.SolidPattern:
+            problems.append(f"{name}: residual hazard is a solid fill, not hatched")
+    if minimum_area > 0:
+        small = [f.id() for f in layer.getFeatures() if f.geometry().area() < minimum_area - 1e-6]
+        if small:
+            problems.append(f"{name}: {len(small)} of {layer.featureCount()} zones are smaller than {minimum_area} m2")
     if layer.crs().authid() != crs:
         problems.append(f"{name}: CRS {layer.crs().authid()}, expected {crs}")
     return problems
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) not in (3, 4):
         print(__doc__)
         return 2
     app = QgsApplication([], False)
     app.initQgis()
-    problems = problems_of(sys.argv[2], sys.argv[1])
+    problems = problems_of(sys.argv[2], sys.argv[1], float(sys.argv[3]) if len(sys.argv) == 4 else 0.0)
     app.exitQgis()
     for problem in problems:
         print(problem)
