@@ -56,15 +56,39 @@ bool derived_from_listed(const std::string& name, const std::set<std::string>& l
   return false;
 }
 
+// The checksums the manifests of sets inside `folder` already hold (a study's scenarios), by the
+// files' paths relative to `folder`, with the stamps they were taken at.
+std::map<std::string, nlohmann::json> nested_records(const std::filesystem::path& folder,
+                                                     const std::vector<std::filesystem::path>& files) {
+  std::map<std::string, nlohmann::json> records;
+  for (const std::filesystem::path& relative : files) {
+    if (relative.filename() != kFolderManifestName) continue;
+    std::ifstream in(folder / relative);
+    const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+    if (!manifest.is_object() || !manifest.contains("files") || !manifest["files"].is_object()) continue;
+    for (const auto& [name, record] : manifest["files"].items()) {
+      records[(relative.parent_path() / name).generic_string()] = record;
+    }
+  }
+  return records;
+}
+
 }  // namespace
 
 void write_folder_manifest(const std::filesystem::path& folder) {
+  const std::vector<std::filesystem::path> all = files_under(folder);
+  const std::map<std::string, nlohmann::json> known = nested_records(folder, all);
   nlohmann::ordered_json files = nlohmann::ordered_json::object();
-  for (const std::filesystem::path& relative : files_under(folder)) {
+  for (const std::filesystem::path& relative : all) {
+    const std::string name = relative.generic_string();
     const FileStamp stamp = stamp_of(folder / relative);
-    files[relative.generic_string()] = {{"bytes", stamp.size},
-                                        {"modified_ns", stamp.modified_ns},
-                                        {"sha256", sha256_of_file(folder / relative)}};
+    // A file a nested set's manifest holds unchanged keeps its checksum: hashed once, not again.
+    const auto record = known.find(name);
+    const bool unchanged = record != known.end() && record->second.value("bytes", std::uint64_t{0}) == stamp.size &&
+                           record->second.value("modified_ns", std::int64_t{0}) == stamp.modified_ns;
+    files[name] = {{"bytes", stamp.size},
+                   {"modified_ns", stamp.modified_ns},
+                   {"sha256", unchanged ? record->second.value("sha256", std::string()) : sha256_of_file(folder / relative)}};
   }
   const nlohmann::ordered_json manifest = {
       {"software", "talus"},

@@ -104,24 +104,23 @@ long patches_of(const std::vector<std::int32_t>& degree, const std::vector<std::
 std::vector<std::int32_t> majority_smoothed(const std::vector<std::int32_t>& degree, const std::vector<std::int32_t>& valid,
                                             int width, int height) {
   std::vector<std::int32_t> smoothed = degree;
+  const std::int32_t highest = degree.empty() ? 0 : std::max(0, *std::max_element(degree.begin(), degree.end()));
+  std::vector<int> votes(static_cast<std::size_t>(highest) + 1);  // per degree, reused cell after cell
   for (int row = 0; row < height; ++row) {
     for (int col = 0; col < width; ++col) {
       const std::size_t cell = static_cast<std::size_t>(row) * width + col;
       if (valid[cell] == 0) continue;
-      std::map<std::int32_t, int> votes;
-      for (int dr = -1; dr <= 1; ++dr) {
-        for (int dc = -1; dc <= 1; ++dc) {
-          const int r = row + dr, c = col + dc;
-          if (r < 0 || r >= height || c < 0 || c >= width) continue;
+      std::fill(votes.begin(), votes.end(), 0);
+      for (int r = std::max(row - 1, 0); r <= std::min(row + 1, height - 1); ++r) {
+        for (int c = std::max(col - 1, 0); c <= std::min(col + 1, width - 1); ++c) {
           const std::size_t near = static_cast<std::size_t>(r) * width + c;
-          if (valid[near] != 0) ++votes[degree[near]];
+          if (valid[near] != 0) ++votes[static_cast<std::size_t>(degree[near])];
         }
       }
-      int most = 0;
-      for (const auto& [d, n] : votes) most = std::max(most, n);
-      if (votes[degree[cell]] == most) continue;
-      for (const auto& [d, n] : votes) {
-        if (n == most) smoothed[cell] = d;  // the map is ordered: the last tied is the highest
+      const int most = *std::max_element(votes.begin(), votes.end());
+      if (votes[static_cast<std::size_t>(degree[cell])] == most) continue;
+      for (std::size_t d = 0; d < votes.size(); ++d) {
+        if (votes[d] == most) smoothed[cell] = static_cast<std::int32_t>(d);  // the last tied is the highest
       }
     }
   }

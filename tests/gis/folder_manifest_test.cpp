@@ -9,6 +9,8 @@
 #include <chrono>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "test_paths.hpp"
 
 namespace talus::gis {
@@ -73,6 +75,26 @@ TEST(FolderManifest, ACopiedSetWithNewTimesIsUnchanged) {
   EXPECT_TRUE(survey.recorded);
   EXPECT_TRUE(survey.foreign.empty()) << list_of_names(survey.foreign);
   EXPECT_TRUE(survey.changed.empty()) << list_of_names(survey.changed);
+}
+
+// A study's folder holds the sets of its scenarios, each with its manifest: the study's manifest
+// takes their checksums for files whose stamps still match instead of reading them again.
+TEST(FolderManifest, TakesTheChecksumsOfNestedSetsWhoseFilesAreUnchanged) {
+  const fs::path study = test::fresh_folder("manifest_nested");
+  fs::create_directories(study / "scenarios");
+  fs::copy(written_set("manifest_nested_set"), study / "scenarios" / "a", fs::copy_options::recursive);
+  const fs::path set = study / "scenarios" / "a";
+  write_folder_manifest(set);
+  std::ifstream in(set / kFolderManifestName);
+  nlohmann::json nested = nlohmann::json::parse(in);
+  in.close();
+  nested["files"]["run.json"]["sha256"] = "taken from the nested manifest";
+  std::ofstream(set / kFolderManifestName) << nested.dump();
+  write_folder_manifest(study);
+  std::ifstream root(study / kFolderManifestName);
+  const nlohmann::json manifest = nlohmann::json::parse(root);
+  EXPECT_EQ(manifest["files"]["scenarios/a/run.json"]["sha256"], "taken from the nested manifest");
+  EXPECT_EQ(manifest["files"]["scenarios/a/energy_max.tif"]["sha256"], nested["files"]["energy_max.tif"]["sha256"]);
 }
 
 TEST(FolderManifest, AFolderWithoutAManifestIsNotRecorded) {
