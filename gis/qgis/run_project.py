@@ -316,10 +316,15 @@ def page(project, title, legend_layers, map_layers, extent, facts):
     return layout, root
 
 
+def layer_page(project, layer, base_layers, extent, facts):
+    """The page of a layer over the base layers: its legend holds the layer and the release."""
+    return page(project, layer.name(), [layer] + [b for b in base_layers if b.name() == "Release"],
+                [layer] + base_layers, extent, facts)
+
+
 def quicklook(project, layer, base_layers, extent, facts, path):
     """One page of a layer over the base layers, as PNG."""
-    layout, root = page(project, layer.name(), [layer] + [b for b in base_layers if b.name() == "Release"],
-                        [layer] + base_layers, extent, facts)
+    layout, root = layer_page(project, layer, base_layers, extent, facts)
     settings = QgsLayoutExporter.ImageExportSettings()
     settings.dpi = QUICKLOOK_DPI
     settings.exportMetadata = False  # GDAL cannot add it to a PNG
@@ -335,8 +340,7 @@ def quicklook(project, layer, base_layers, extent, facts, path):
 def report_layout(project, layer, base_layers, extent, facts, path):
     """The report page, "Report": the main layer over the base layers, saved in the project's
     layouts (Project > Layouts) for the user to edit, and exported as PDF at `path`."""
-    layout, root = page(project, layer.name(), [layer] + [b for b in base_layers if b.name() == "Release"],
-                        [layer] + base_layers, extent, facts)
+    layout, root = layer_page(project, layer, base_layers, extent, facts)
     layout.setName("Report")
     project.layoutManager().addLayout(layout)
     result = QgsLayoutExporter(layout).exportToPdf(path, QgsLayoutExporter.PdfExportSettings())

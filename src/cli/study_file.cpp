@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "job_output.hpp"
 #include "talus/core/errors.hpp"
 #include "toml_file.hpp"
 
@@ -153,7 +154,8 @@ Study read_study(const std::filesystem::path& file) {
     if (const toml::node* area = hazard->get("minimum_zone_m2")) {
       const std::optional<double> value = area->is_number() ? area->value<double>() : std::nullopt;
       if (!value || !(*value >= 0.0 && *value <= 1e6)) {
-        throw InputError(name + ": [hazard] minimum_zone_m2: expected a number of 0-1000000 m2");
+        const std::string given = value ? printf_text(" %g", *value) : "";
+        throw InputError(name + ": [hazard] minimum_zone_m2" + given + ": expected a number of 0-1000000 m2");
       }
       study.zones.minimum_area_m2 = *value;
     }
